@@ -1,0 +1,42 @@
+// Runs a Program over one batch of kBatchLanes lanes. Dispatch happens once per
+// instruction per batch; each instruction's body is a loop over the lanes.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "refx/core/batch.h"
+#include "refx/exec/ir.h"
+
+namespace refx::exec {
+
+// One vec4 register for every lane, SoA: c[component][lane].
+struct alignas(64) LaneVec4 {
+  float c[4][kBatchLanes];
+};
+
+// Texture sampling as the executor sees it. coords[i][lane]; `mode` tells how
+// the LOD is obtained (matching the Tex* ops). out[channel][lane].
+enum class SampleMode : uint8_t { Implicit, Projected, Bias, Lod };
+struct SamplerBinding {
+  const void* context = nullptr;
+  void (*sample)(const void* context, SampleMode mode, const float (*coords)[kBatchLanes],
+                 uint16_t laneMask, float (*out)[kBatchLanes]) = nullptr;
+};
+
+struct ExecContext {
+  const Vec4* constants = nullptr;  // Const file
+  int constantCount = 0;
+  const SamplerBinding* samplers = nullptr;  // indexed by Instr::sampler
+  int samplerCount = 0;
+};
+
+// Register storage for one batch; sized for a program once and reused.
+struct BatchRegisters {
+  std::vector<LaneVec4> temps, inputs, outputs;
+  uint16_t laneMask = 0xffff;  // live lanes; Kill clears bits
+  void resize(const Program& p);
+};
+
+void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs);
+
+}  // namespace refx::exec

@@ -1,0 +1,127 @@
+// refx::Device: a Direct3D 9 device rendering in software. Method names follow
+// IDirect3DDevice9 so D3D9 code maps 1:1.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "refx/core/color.h"
+#include "refx/pipeline/caps.h"
+#include "refx/pipeline/state.h"
+
+namespace refx {
+
+// Depth/stencil surface (D24S8 semantics: 24-bit depth as float in [0,1], 8-bit stencil).
+struct DepthStencilSurface {
+  int width = 0, height = 0;
+  std::vector<float> depth;
+  std::vector<uint8_t> stencil;
+  DepthStencilSurface(int w, int h) : width(w), height(h), depth(size_t(w) * h, 1.0f),
+                                      stencil(size_t(w) * h, 0) {}
+};
+using DepthStencilPtr = std::shared_ptr<DepthStencilSurface>;
+
+enum class Precision { Exact, Hardware };
+
+struct DeviceOptions {
+  int threads = 0;  // 0: all cores
+  Precision precision = Precision::Exact;
+};
+
+class StateBlock {
+ public:
+  StateBlock() = default;
+  explicit StateBlock(DeviceState s) : state_(std::move(s)) {}
+  const DeviceState& state() const { return state_; }
+ private:
+  DeviceState state_;
+};
+
+struct DrawStats {
+  uint64_t pixelsShaded = 0;  // pixels that ran the pixel stage (summed over draws)
+  uint64_t primitives = 0;
+};
+
+class Device {
+ public:
+  explicit Device(CapsProfile caps, DeviceOptions options = {});
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  const CapsProfile& caps() const { return caps_; }
+  void setCaps(CapsProfile caps) { caps_ = std::move(caps); }
+  const DeviceOptions& options() const { return options_; }
+  void setThreads(int threads);
+
+  // Render target: level 0 of a 2D texture (A8R8G8B8 or X8R8G8B8). Setting it resets
+  // the viewport to the whole target, as SetRenderTarget does.
+  void setRenderTarget(TexturePtr target);
+  const TexturePtr& renderTarget() const { return target_; }
+  void setDepthStencilSurface(DepthStencilPtr ds);
+  const DepthStencilPtr& depthStencilSurface() const { return depth_; }
+
+  void clear(uint32_t flags, D3DColor color, float z, uint32_t stencil);
+
+  void setRenderState(d3d::RenderState s, uint32_t value);
+  uint32_t getRenderState(d3d::RenderState s) const { return state_.renderStates[s]; }
+  void setTextureStageState(int stage, d3d::TextureStageState s, uint32_t value);
+  uint32_t getTextureStageState(int stage, d3d::TextureStageState s) const {
+    return state_.stageStates[stage][s];
+  }
+  void setSamplerState(int sampler, d3d::SamplerStateType s, uint32_t value);
+  uint32_t getSamplerState(int sampler, d3d::SamplerStateType s) const {
+    return state_.samplerStates[sampler][s];
+  }
+  void setTexture(int sampler, TexturePtr texture);
+  void setTransform(uint32_t type, const Matrix& m);  // d3d::TransformType or TS_TEXTURE0+n
+  Matrix getTransform(uint32_t type) const;
+  void setLight(int index, const Light& light);
+  void lightEnable(int index, bool enable);
+  void setMaterial(const Material& m) { state_.material = m; }
+  void setViewport(const Viewport& vp) { state_.viewport = vp; }
+  void setScissorRect(const Rect& r) { state_.scissor = r; }
+
+  void setFVF(uint32_t fvf) { state_.declaration = VertexDeclaration::fromFVF(fvf); }
+  void setVertexDeclaration(VertexDeclaration decl) { state_.declaration = std::move(decl); }
+  void setStreamSource(int stream, VertexBufferPtr vb, uint32_t offset, uint32_t stride);
+  void setIndices(IndexBufferPtr ib) { state_.indices = std::move(ib); }
+
+  void drawPrimitive(d3d::PrimitiveType type, uint32_t startVertex, uint32_t primitiveCount);
+  void drawIndexedPrimitive(d3d::PrimitiveType type, int32_t baseVertex, uint32_t minIndex,
+                            uint32_t numVertices, uint32_t startIndex, uint32_t primitiveCount);
+  void drawPrimitiveUP(d3d::PrimitiveType type, uint32_t primitiveCount, const void* vertices,
+                       uint32_t stride);
+  void drawIndexedPrimitiveUP(d3d::PrimitiveType type, uint32_t minIndex, uint32_t numVertices,
+                              uint32_t primitiveCount, const void* indices, bool index32,
+                              const void* vertices, uint32_t stride);
+
+  StateBlock createStateBlock() const { return StateBlock(state_); }
+  void applyStateBlock(const StateBlock& sb) { state_ = sb.state(); }
+  const DeviceState& state() const { return state_; }
+  DeviceState& mutableState() { return state_; }
+
+  // ValidateDevice against the active caps profile.
+  ValidationResult validate() const { return validateDeviceState(state_, caps_); }
+
+  const DrawStats& stats() const { return stats_; }
+  void resetStats() { stats_ = {}; }
+
+ private:
+  struct Impl;
+  void draw(d3d::PrimitiveType type, uint32_t primitiveCount, int32_t baseVertex,
+            const void* indices, bool index32, uint32_t vertexCount, uint32_t firstVertex);
+
+  CapsProfile caps_;
+  DeviceOptions options_;
+  DeviceState state_;
+  TexturePtr target_;
+  DepthStencilPtr depth_;
+  DrawStats stats_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Number of vertices a primitive count needs (D3D rules).
+uint32_t verticesForPrimitives(d3d::PrimitiveType type, uint32_t primitiveCount);
+
+}  // namespace refx

@@ -1,0 +1,111 @@
+// The complete D3D9 device state as a value: what a state block captures and what
+// ValidateDevice inspects.
+#pragma once
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "refx/core/color.h"
+#include "refx/core/math.h"
+#include "refx/pipeline/d3d9types.h"
+#include "refx/resource/texture.h"
+
+namespace refx {
+
+struct Light {  // D3DLIGHT9
+  uint32_t type = d3d::LIGHT_DIRECTIONAL;
+  Color4 diffuse{1, 1, 1, 0}, specular{0, 0, 0, 0}, ambient{0, 0, 0, 0};
+  Vec3 position{0, 0, 0};
+  Vec3 direction{0, 0, 1};
+  float range = 0, falloff = 0, attenuation0 = 0, attenuation1 = 0, attenuation2 = 0;
+  float theta = 0, phi = 0;
+};
+
+struct Material {  // D3DMATERIAL9
+  Color4 diffuse{0, 0, 0, 0}, ambient{0, 0, 0, 0}, specular{0, 0, 0, 0}, emissive{0, 0, 0, 0};
+  float power = 0;
+};
+
+struct Viewport {  // D3DVIEWPORT9
+  int x = 0, y = 0, width = 0, height = 0;
+  float minZ = 0, maxZ = 1;
+};
+
+struct Rect {
+  int left = 0, top = 0, right = 0, bottom = 0;
+};
+
+struct VertexElement {  // D3DVERTEXELEMENT9
+  uint16_t stream = 0;
+  uint16_t offset = 0;
+  uint8_t type = d3d::DECLTYPE_FLOAT3;
+  uint8_t method = 0;
+  uint8_t usage = d3d::DECLUSAGE_POSITION;
+  uint8_t usageIndex = 0;
+  bool operator==(const VertexElement&) const = default;
+};
+
+struct VertexDeclaration {
+  std::vector<VertexElement> elements;
+  uint32_t fvf = 0;  // nonzero when made from an FVF code
+  static VertexDeclaration fromFVF(uint32_t fvf);
+  // Size in bytes of one vertex of stream `stream` (max offset+size of its elements).
+  uint32_t streamStride(int stream) const;
+  const VertexElement* find(uint8_t usage, uint8_t usageIndex) const;
+  bool operator==(const VertexDeclaration&) const = default;
+};
+
+struct VertexBuffer {
+  std::vector<uint8_t> data;
+};
+struct IndexBuffer {
+  std::vector<uint8_t> data;
+  bool index32 = false;
+};
+using VertexBufferPtr = std::shared_ptr<VertexBuffer>;
+using IndexBufferPtr = std::shared_ptr<IndexBuffer>;
+
+struct StreamSource {
+  VertexBufferPtr buffer;
+  uint32_t offset = 0;
+  uint32_t stride = 0;
+};
+
+inline uint32_t floatBits(float f) { return std::bit_cast<uint32_t>(f); }
+inline float bitsFloat(uint32_t u) { return std::bit_cast<float>(u); }
+
+struct DeviceState {
+  std::array<uint32_t, d3d::kRenderStateCount> renderStates{};
+  std::array<std::array<uint32_t, d3d::kTextureStageStateCount>, d3d::kMaxTextureStages> stageStates{};
+  std::array<std::array<uint32_t, d3d::kSamplerStateCount>, d3d::kMaxSamplers> samplerStates{};
+  std::array<TexturePtr, d3d::kMaxSamplers> textures{};
+  Matrix world = Matrix::identity(), view = Matrix::identity(), projection = Matrix::identity();
+  std::array<Matrix, 8> textureTransforms{};
+  std::array<Light, 8> lights{};
+  std::array<bool, 8> lightEnabled{};
+  Material material{};
+  Viewport viewport{};
+  Rect scissor{};
+  VertexDeclaration declaration;
+  std::array<StreamSource, 16> streams{};
+  IndexBufferPtr indices;
+  // Shader objects and constants are added by the shader layer; nullptr = fixed function.
+  std::shared_ptr<const void> vertexShader, pixelShader;
+  std::vector<Vec4> vsConstF = std::vector<Vec4>(256), psConstF = std::vector<Vec4>(224);
+  std::array<std::array<int, 4>, 16> vsConstI{}, psConstI{};
+  std::array<bool, 16> vsConstB{}, psConstB{};
+
+  DeviceState();  // D3D9 defaults
+
+  uint32_t rs(d3d::RenderState s) const { return renderStates[s]; }
+  float rsFloat(d3d::RenderState s) const { return bitsFloat(renderStates[s]); }
+  uint32_t tss(int stage, d3d::TextureStageState s) const { return stageStates[stage][s]; }
+  float tssFloat(int stage, d3d::TextureStageState s) const {
+    return bitsFloat(stageStates[stage][s]);
+  }
+  uint32_t samp(int sampler, d3d::SamplerStateType s) const { return samplerStates[sampler][s]; }
+};
+
+}  // namespace refx

@@ -1,0 +1,56 @@
+// Texture sampling over SoA batches: addressing, point/linear/anisotropic(as linear)
+// filtering, mip selection from quad derivatives, cube face selection, border, sRGB.
+#pragma once
+#include <cstdint>
+
+#include "refx/core/batch.h"
+#include "refx/core/color.h"
+#include "refx/resource/texture.h"
+
+namespace refx {
+
+// D3DTEXTUREADDRESS
+enum class TextureAddress : uint32_t { Wrap = 1, Mirror = 2, Clamp = 3, Border = 4, MirrorOnce = 5 };
+// D3DTEXTUREFILTERTYPE
+enum class TextureFilter : uint32_t { None = 0, Point = 1, Linear = 2, Anisotropic = 3 };
+
+// The D3DSAMP_* states that affect sampling, decoded.
+struct SamplerState {
+  TextureAddress addressU = TextureAddress::Wrap, addressV = TextureAddress::Wrap,
+                 addressW = TextureAddress::Wrap;
+  Color4 borderColor{0, 0, 0, 0};
+  TextureFilter magFilter = TextureFilter::Point, minFilter = TextureFilter::Point,
+                mipFilter = TextureFilter::None;
+  float mipLodBias = 0;
+  uint32_t maxMipLevel = 0;
+  uint32_t maxAnisotropy = 1;
+  bool srgb = false;
+};
+
+enum class LodMode {
+  Derivatives,  // λ from the 2x2 quad's coordinate differences (+ bias); pixel shaders
+  Bias,         // derivatives + per-lane bias in `lod` (texldb)
+  Explicit,     // λ = lod[lane] (texldl, vertex texture fetch)
+  Gradients,    // λ from ddx/ddy given per lane (texldd)
+};
+
+struct SampleRequest {
+  // Coordinates per lane; w is used by volume and cube textures (cube: direction xyz).
+  const float* u = nullptr;
+  const float* v = nullptr;
+  const float* w = nullptr;
+  LodMode lodMode = LodMode::Derivatives;
+  const float* lod = nullptr;        // Bias / Explicit
+  const float* ddx[3] = {};          // Gradients: d(u,v,w)/dx per lane
+  const float* ddy[3] = {};
+  uint16_t laneMask = 0xffff;        // lanes whose result is needed (others may be skipped)
+};
+
+// out[channel][lane] = sampled (r,g,b,a) as the shader sees it.
+void sampleTexture(const Texture& tex, const SamplerState& state, const SampleRequest& req,
+                   float out[4][kBatchLanes]);
+
+// Cube face selection: face index (D3DCUBEMAP_FACES) and (u,v) in [0,1] on that face.
+int cubeFaceCoords(float x, float y, float z, float& u, float& v);
+
+}  // namespace refx

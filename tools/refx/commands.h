@@ -1,0 +1,22 @@
+// Each `refx` subcommand lives in its own file and registers itself here.
+#pragma once
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace refx::cli {
+
+// A registered command returns the action to run once the command line is parsed;
+// the action returns the process exit status.
+using Action = std::function<int()>;
+using Register = Action (*)(CLI::App& app);
+
+Action addCapsCommand(CLI::App& app);
+Action addReplayCommand(CLI::App& app);
+Action addGalleryCommand(CLI::App& app);
+Action addBenchCommand(CLI::App& app);
+
+// True when stderr is a terminal (progress display).
+bool stderrIsTerminal();
+
+}  // namespace refx::cli

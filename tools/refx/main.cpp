@@ -1,0 +1,41 @@
+#include <cstdio>
+#include <exception>
+#include <unistd.h>
+
+#include "commands.h"
+#include "refx/core/diagnostics.h"
+
+namespace refx::cli {
+bool stderrIsTerminal() { return isatty(2) != 0; }
+}  // namespace refx::cli
+
+int main(int argc, char** argv) {
+  using namespace refx::cli;
+  CLI::App app{"refx: a software Direct3D 8/9 shading system"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "refx 0.1");
+  std::vector<std::pair<CLI::App*, Action>> commands;
+  for (Register reg : {addCapsCommand, addReplayCommand, addGalleryCommand, addBenchCommand}) {
+    size_t before = app.get_subcommands({}).size();
+    Action action = reg(app);
+    auto subs = app.get_subcommands({});
+    if (subs.size() > before) commands.emplace_back(subs.back(), std::move(action));
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? 0 : 2;  // usage errors exit 2
+  }
+  try {
+    for (auto& [sub, action] : commands)
+      if (sub->parsed()) return action();
+  } catch (const refx::Error& e) {
+    std::fprintf(stderr, "refx: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "refx: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
