@@ -92,6 +92,8 @@ constexpr uint8_t kSwzXXXX = swz(0, 0, 0, 0);
 constexpr uint8_t kSwzYYYY = swz(1, 1, 1, 1);
 constexpr uint8_t kSwzZZZZ = swz(2, 2, 2, 2);
 
+// Number of source operands an op reads.
+int sourceCount(Op op);
 // Readable listing of a program (one instruction per line).
 std::string listProgram(const Program& p);
 
