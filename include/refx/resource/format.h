@@ -61,6 +61,7 @@ struct FormatInfo {
   bool isSigned;             // V8U8, Q8W8V8U8, ... (some channels signed)
   bool isFloat;              // R16F ... A32B32G32R32F
   bool fitsUnorm8;           // every channel decodes exactly or nearly to 8-bit unorm
+  bool isDepth = false;      // D16, D24S8: depth-stencil surfaces (G = depth when read)
 };
 
 // nullptr for unknown formats.
@@ -79,6 +80,10 @@ size_t formatImageSize(Format f, int width, int height, int depth = 1);
 void decodeRow(Format f, const uint8_t* src, int count, Color4* out);
 // Encodes values (as a shader would read them back) into a row of a non-compressed format.
 void encodeRow(Format f, const Color4* src, int count, uint8_t* out);
+// IEEE half <-> float (round to nearest even; overflow gives infinity).
+float halfToFloat(uint16_t h);
+uint16_t floatToHalf(float f);
+
 // Decodes one 4x4 DXTn block into 16 texels (row-major).
 void decodeBlock(Format f, const uint8_t* block, Color4 out[16]);
 

@@ -1,5 +1,6 @@
 // Textures: 2D, cube and volume, with mip chains, stored in their D3D format.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -50,9 +51,11 @@ class Texture {
   // Box-filters level 0 of every face into the smaller levels.
   void generateMips();
 
-  // Call after writing data() directly so sampling sees the change.
+  // Call after writing data() directly so sampling sees the change. Drops the decoded
+  // levels: no sampling may run on this texture at the same time.
   void markDirty();
-  // Decoded level for the sampler (built on first use, thread-safe).
+  // Decoded level for the sampler (built on first use, thread-safe; after the first
+  // use a lookup is one atomic load).
   const SampleLevel& sampleLevel(int face, int level) const;
 
  private:
@@ -61,7 +64,8 @@ class Texture {
   Format format_;
   int width_, height_, depth_, levels_;
   std::vector<std::vector<uint8_t>> storage_;  // [face*levels + level]
-  mutable std::vector<std::unique_ptr<SampleLevel>> decoded_;
+  mutable std::vector<std::atomic<const SampleLevel*>> decoded_;  // published levels
+  mutable std::vector<std::unique_ptr<SampleLevel>> decodedOwned_;  // guarded by decodeMutex_
   mutable std::mutex decodeMutex_;
 };
 
