@@ -1,0 +1,716 @@
+#include "refx/pipeline/device.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "ff_pixel.h"
+#include "ff_vertex.h"
+#include "raster.h"
+#include "refx/core/diagnostics.h"
+#include "refx/resource/sampler.h"
+#include "vertex_fetch.h"
+
+namespace refx {
+
+using namespace d3d;
+using namespace pipeline;
+
+struct Device::Impl {
+  explicit Impl(int threads) : pool(threads) {}
+  ThreadPool pool;
+  std::vector<ShadedVertex> vertices;
+};
+
+Device::Device(CapsProfile caps, DeviceOptions options)
+    : caps_(std::move(caps)), options_(options), impl_(std::make_unique<Impl>(options.threads)) {}
+
+Device::~Device() = default;
+
+void Device::setThreads(int threads) {
+  options_.threads = threads;
+  impl_ = std::make_unique<Impl>(threads);
+}
+
+void Device::setRenderTarget(TexturePtr target) {
+  if (target && (target->type() != TextureType::Texture2D ||
+                 (target->format() != Format::A8R8G8B8 && target->format() != Format::X8R8G8B8)))
+    fail("render target must be a 2D A8R8G8B8 or X8R8G8B8 texture, got {}",
+         formatName(target->format()));
+  target_ = std::move(target);
+  if (target_) {
+    state_.viewport = Viewport{0, 0, target_->width(), target_->height(), 0, 1};
+    state_.scissor = Rect{0, 0, target_->width(), target_->height()};
+  }
+}
+
+void Device::setDepthStencilSurface(DepthStencilPtr ds) { depth_ = std::move(ds); }
+
+// The rectangle Clear and draws may touch: viewport ∩ target (∩ scissor when enabled).
+static Rect activeRect(const DeviceState& s, int w, int h) {
+  Rect r{std::max(0, s.viewport.x), std::max(0, s.viewport.y),
+         std::min(w, s.viewport.x + s.viewport.width), std::min(h, s.viewport.y + s.viewport.height)};
+  if (s.rs(RS_SCISSORTESTENABLE)) {
+    r.left = std::max(r.left, s.scissor.left);
+    r.top = std::max(r.top, s.scissor.top);
+    r.right = std::min(r.right, s.scissor.right);
+    r.bottom = std::min(r.bottom, s.scissor.bottom);
+  }
+  return r;
+}
+
+void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
+  const int w = target_ ? target_->width() : (depth_ ? depth_->width : 0);
+  const int h = target_ ? target_->height() : (depth_ ? depth_->height : 0);
+  Rect r = activeRect(state_, w, h);
+  if ((flags & CLEAR_TARGET) && target_) {
+    uint8_t* base = target_->data(0, 0);
+    const size_t pitch = target_->rowPitch(0);
+    for (int y = r.top; y < r.bottom; ++y)
+      for (int x = r.left; x < r.right; ++x) std::memcpy(base + y * pitch + x * 4, &color, 4);
+    target_->markDirty();
+  }
+  if (depth_ && (flags & (CLEAR_ZBUFFER | CLEAR_STENCIL))) {
+    for (int y = r.top; y < std::min(r.bottom, depth_->height); ++y)
+      for (int x = r.left; x < std::min(r.right, depth_->width); ++x) {
+        size_t i = size_t(y) * depth_->width + x;
+        if (flags & CLEAR_ZBUFFER) depth_->depth[i] = std::clamp(z, 0.0f, 1.0f);
+        if (flags & CLEAR_STENCIL) depth_->stencil[i] = uint8_t(stencil);
+      }
+  }
+}
+
+void Device::setRenderState(RenderState s, uint32_t value) {
+  if (s >= kRenderStateCount) fail("render state {} out of range", uint32_t(s));
+  state_.renderStates[s] = value;
+}
+
+void Device::setTextureStageState(int stage, TextureStageState s, uint32_t value) {
+  if (stage < 0 || stage >= kMaxTextureStages || s >= kTextureStageStateCount)
+    fail("texture stage state {} of stage {} out of range", uint32_t(s), stage);
+  state_.stageStates[stage][s] = value;
+}
+
+void Device::setSamplerState(int sampler, SamplerStateType s, uint32_t value) {
+  if (sampler < 0 || sampler >= kMaxSamplers || s >= kSamplerStateCount)
+    fail("sampler state {} of sampler {} out of range", uint32_t(s), sampler);
+  state_.samplerStates[sampler][s] = value;
+}
+
+void Device::setTexture(int sampler, TexturePtr texture) {
+  if (sampler < 0 || sampler >= kMaxSamplers) fail("sampler {} out of range", sampler);
+  state_.textures[sampler] = std::move(texture);
+}
+
+void Device::setTransform(uint32_t type, const Matrix& m) {
+  if (type == TS_WORLD) state_.world = m;
+  else if (type == TS_VIEW) state_.view = m;
+  else if (type == TS_PROJECTION) state_.projection = m;
+  else if (type >= TS_TEXTURE0 && type < TS_TEXTURE0 + 8) state_.textureTransforms[type - TS_TEXTURE0] = m;
+  else fail("unknown transform type {}", type);
+}
+
+Matrix Device::getTransform(uint32_t type) const {
+  if (type == TS_WORLD) return state_.world;
+  if (type == TS_VIEW) return state_.view;
+  if (type == TS_PROJECTION) return state_.projection;
+  if (type >= TS_TEXTURE0 && type < TS_TEXTURE0 + 8) return state_.textureTransforms[type - TS_TEXTURE0];
+  fail("unknown transform type {}", type);
+}
+
+void Device::setLight(int index, const Light& light) {
+  if (index < 0 || index >= 8) fail("light {} out of range (0-7)", index);
+  state_.lights[index] = light;
+}
+
+void Device::lightEnable(int index, bool enable) {
+  if (index < 0 || index >= 8) fail("light {} out of range (0-7)", index);
+  state_.lightEnabled[index] = enable;
+}
+
+void Device::setStreamSource(int stream, VertexBufferPtr vb, uint32_t offset, uint32_t stride) {
+  if (stream < 0 || stream >= 16) fail("stream {} out of range", stream);
+  state_.streams[stream] = StreamSource{std::move(vb), offset, stride};
+}
+
+uint32_t verticesForPrimitives(PrimitiveType type, uint32_t n) {
+  switch (type) {
+    case PT_POINTLIST: return n;
+    case PT_LINELIST: return 2 * n;
+    case PT_LINESTRIP: return n ? n + 1 : 0;
+    case PT_TRIANGLELIST: return 3 * n;
+    case PT_TRIANGLESTRIP: case PT_TRIANGLEFAN: return n ? n + 2 : 0;
+  }
+  return 0;
+}
+
+void Device::drawPrimitive(PrimitiveType type, uint32_t startVertex, uint32_t primitiveCount) {
+  draw(type, primitiveCount, 0, nullptr, false, verticesForPrimitives(type, primitiveCount), startVertex);
+}
+
+void Device::drawIndexedPrimitive(PrimitiveType type, int32_t baseVertex, uint32_t minIndex,
+                                  uint32_t numVertices, uint32_t startIndex, uint32_t primitiveCount) {
+  if (!state_.indices) fail("DrawIndexedPrimitive without an index buffer");
+  const IndexBuffer& ib = *state_.indices;
+  const size_t isize = ib.index32 ? 4 : 2;
+  const size_t needed = (size_t(startIndex) + verticesForPrimitives(type, primitiveCount)) * isize;
+  if (needed > ib.data.size()) fail("DrawIndexedPrimitive reads past the end of the index buffer");
+  draw(type, primitiveCount, baseVertex, ib.data.data() + startIndex * isize, ib.index32, numVertices,
+       minIndex);
+}
+
+void Device::drawPrimitiveUP(PrimitiveType type, uint32_t primitiveCount, const void* vertices,
+                             uint32_t stride) {
+  const uint32_t count = verticesForPrimitives(type, primitiveCount);
+  auto vb = std::make_shared<VertexBuffer>();
+  vb->data.assign(static_cast<const uint8_t*>(vertices),
+                  static_cast<const uint8_t*>(vertices) + size_t(count) * stride);
+  StreamSource saved = state_.streams[0];
+  state_.streams[0] = StreamSource{vb, 0, stride};
+  draw(type, primitiveCount, 0, nullptr, false, count, 0);
+  state_.streams[0] = saved;  // D3D unsets stream 0 after a UP draw; restoring is harmless
+}
+
+void Device::drawIndexedPrimitiveUP(PrimitiveType type, uint32_t minIndex, uint32_t numVertices,
+                                    uint32_t primitiveCount, const void* indices, bool index32,
+                                    const void* vertices, uint32_t stride) {
+  auto vb = std::make_shared<VertexBuffer>();
+  vb->data.assign(static_cast<const uint8_t*>(vertices),
+                  static_cast<const uint8_t*>(vertices) + size_t(minIndex + numVertices) * stride);
+  StreamSource saved = state_.streams[0];
+  state_.streams[0] = StreamSource{vb, 0, stride};
+  draw(type, primitiveCount, 0, indices, index32, numVertices, minIndex);
+  state_.streams[0] = saved;
+}
+
+namespace {
+
+// Sampler binding for the executor: a texture and its decoded sampler states.
+struct BoundSampler {
+  const Texture* texture = nullptr;
+  SamplerState state;
+};
+
+void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatchLanes],
+                 uint16_t laneMask, float (*out)[kBatchLanes]) {
+  const auto* b = static_cast<const BoundSampler*>(ctx);
+  if (!b->texture) {
+    for (int c = 0; c < 4; ++c)
+      for (int l = 0; l < kBatchLanes; ++l) out[c][l] = c == 3 ? 1.0f : 0.0f;
+    return;
+  }
+  SampleRequest req;
+  req.u = co[0];
+  req.v = co[1];
+  req.w = co[2];
+  req.laneMask = laneMask;
+  if (mode == exec::SampleMode::Bias) {
+    req.lodMode = LodMode::Bias;
+    req.lod = co[3];
+  } else if (mode == exec::SampleMode::Lod) {
+    req.lodMode = LodMode::Explicit;
+    req.lod = co[3];
+  }
+  sampleTexture(*b->texture, b->state, req, out);
+}
+
+SamplerState decodeSamplerState(const DeviceState& s, int i) {
+  SamplerState r;
+  r.addressU = TextureAddress(s.samp(i, SAMP_ADDRESSU));
+  r.addressV = TextureAddress(s.samp(i, SAMP_ADDRESSV));
+  r.addressW = TextureAddress(s.samp(i, SAMP_ADDRESSW));
+  r.borderColor = colorFromD3D(s.samp(i, SAMP_BORDERCOLOR));
+  r.magFilter = TextureFilter(s.samp(i, SAMP_MAGFILTER));
+  r.minFilter = TextureFilter(s.samp(i, SAMP_MINFILTER));
+  r.mipFilter = TextureFilter(s.samp(i, SAMP_MIPFILTER));
+  r.mipLodBias = bitsFloat(s.samp(i, SAMP_MIPMAPLODBIAS));
+  r.maxMipLevel = s.samp(i, SAMP_MAXMIPLEVEL);
+  r.maxAnisotropy = s.samp(i, SAMP_MAXANISOTROPY);
+  r.srgb = s.samp(i, SAMP_SRGBTEXTURE) != 0;
+  return r;
+}
+
+// Per pixel input register: which vertex output feeds it.
+int varyingForPixelInput(int input) {
+  if (input == kPixelInDiffuse) return kVertexOutDiffuse;
+  if (input == kPixelInSpecular) return kVertexOutSpecular;
+  if (input >= kPixelInTex0 && input < kPixelInTex0 + 8) return kVertexOutTex0 + (input - kPixelInTex0);
+  if (input == kPixelInFog) return kVertexOutFog;
+  return -1;
+}
+
+// Components of each input register the program reads.
+std::array<uint8_t, 32> inputComponentsRead(const exec::Program& p) {
+  std::array<uint8_t, 32> used{};
+  for (const exec::Instr& in : p.code)
+    for (int i = 0; i < exec::sourceCount(in.op); ++i) {
+      const exec::Src& s = in.src[i];
+      if (s.file != exec::RegFile::Input || s.index >= 32) continue;
+      for (int c = 0; c < 4; ++c) used[s.index] |= uint8_t(1u << ((s.swizzle >> (2 * c)) & 3));
+    }
+  return used;
+}
+
+// Homogeneous clipping (Sutherland-Hodgman) against near z >= 0, far z <= w and a
+// guard band |x|,|y| <= g*w that keeps screen coordinates inside the fixed-point range.
+struct ClipVertex {
+  Vec4 v[kVaryingCount];
+};
+
+float planeDistance(const Vec4& p, int plane, float g) {
+  switch (plane) {
+    case 0: return p.z;            // near
+    case 1: return p.w - p.z;      // far
+    case 2: return g * p.w - p.x;  // right
+    case 3: return g * p.w + p.x;  // left
+    case 4: return g * p.w - p.y;  // top
+    default: return g * p.w + p.y; // bottom
+  }
+}
+
+void clipPolygon(std::vector<ClipVertex>& poly, float g) {
+  std::vector<ClipVertex> out;
+  for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
+    out.clear();
+    const size_t n = poly.size();
+    for (size_t i = 0; i < n; ++i) {
+      const ClipVertex& a = poly[i];
+      const ClipVertex& b = poly[(i + 1) % n];
+      const float da = planeDistance(a.v[0], plane, g), db = planeDistance(b.v[0], plane, g);
+      if (da >= 0) out.push_back(a);
+      if ((da >= 0) != (db >= 0)) {
+        const float t = da / (da - db);
+        ClipVertex c;
+        for (int k = 0; k < kVaryingCount; ++k)
+          for (int j = 0; j < 4; ++j) c.v[k][j] = a.v[k][j] + (b.v[k][j] - a.v[k][j]) * t;
+        out.push_back(c);
+      }
+    }
+    poly.swap(out);
+  }
+}
+
+}  // namespace
+
+// Primitive setup from screen-space vertices into the raster draw.
+namespace {
+
+struct SetupVertex {
+  float x, y, z, invW;
+  const Vec4* varyings;
+};
+
+void addPlane(std::vector<float>& planes, double a0, double a1, double a2, double x1, double y1,
+              double x2, double y2, double det) {
+  // Plane through (0,0,a0), (x1,y1,a1), (x2,y2,a2) relative to vertex 0.
+  const double dx = ((a1 - a0) * y2 - (a2 - a0) * y1) / det;
+  const double dy = ((a2 - a0) * x1 - (a1 - a0) * x2) / det;
+  planes.push_back(float(a0));
+  planes.push_back(float(dx));
+  planes.push_back(float(dy));
+}
+
+void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, const Rect& bounds,
+                   bool flat) {
+  constexpr double one = double(1 << kSubPixelBits);
+  int64_t X[3], Y[3];
+  for (int i = 0; i < 3; ++i) {
+    X[i] = std::llround(double(sv[i].x) * one);
+    Y[i] = std::llround(double(sv[i].y) * one);
+  }
+  const int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
+  if (area == 0) return;
+  const bool ccw = area < 0;  // y points down: positive area is clockwise on screen
+  if ((cull == CULL_CCW && ccw) || (cull == CULL_CW && !ccw)) return;
+  int order[3] = {0, 1, 2};
+  if (ccw) std::swap(order[1], order[2]);
+  Primitive p{};
+  p.kind = PrimKind::Triangle;
+  p.counterClockwise = ccw;
+  for (int k = 0; k < 3; ++k) {
+    const int a = order[k], b = order[(k + 1) % 3];
+    const int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
+    // E(P) = (P.y - a.y)*dx - (P.x - a.x)*dy, positive inside a clockwise triangle.
+    p.edgeA[k] = -dy;
+    p.edgeB[k] = dx;
+    p.edgeC[k] = -Y[a] * dx + X[a] * dy;
+    const bool topLeft = (dy == 0 && dx > 0) || dy < 0;
+    p.edgeBias[k] = topLeft ? 1 : 0;
+  }
+  const double minx = std::min({X[0], X[1], X[2]}) / one, maxx = std::max({X[0], X[1], X[2]}) / one;
+  const double miny = std::min({Y[0], Y[1], Y[2]}) / one, maxy = std::max({Y[0], Y[1], Y[2]}) / one;
+  p.minX = std::max(bounds.left, int(std::ceil(minx)));
+  p.maxX = std::min(bounds.right - 1, int(std::floor(maxx)));
+  p.minY = std::max(bounds.top, int(std::ceil(miny)));
+  p.maxY = std::min(bounds.bottom - 1, int(std::floor(maxy)));
+  if (p.minX > p.maxX || p.minY > p.maxY) return;
+  // Interpolation planes relative to vertex 0 (snapped positions).
+  const double x0 = X[0] / one, y0 = Y[0] / one;
+  const double x1 = X[1] / one - x0, y1 = Y[1] / one - y0, x2 = X[2] / one - x0, y2 = Y[2] / one - y0;
+  const double det = x1 * y2 - x2 * y1;
+  p.originX = float(x0);
+  p.originY = float(y0);
+  p.planeOffset = uint32_t(d.planes.size());
+  addPlane(d.planes, sv[0].invW, sv[1].invW, sv[2].invW, x1, y1, x2, y2, det);
+  addPlane(d.planes, sv[0].z, sv[1].z, sv[2].z, x1, y1, x2, y2, det);
+  for (const InterpolatedInput& in : d.inputs) {
+    if (in.flat) {
+      d.planes.push_back(sv[0].varyings[in.varying][in.component]);
+      d.planes.push_back(0);
+      d.planes.push_back(0);
+      continue;
+    }
+    double a[3];
+    for (int i = 0; i < 3; ++i) a[i] = double(sv[i].varyings[in.varying][in.component]) * sv[i].invW;
+    addPlane(d.planes, a[0], a[1], a[2], x1, y1, x2, y2, det);
+  }
+  d.prims.push_back(p);
+}
+
+void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const Rect& bounds, bool flat) {
+  const float dx = b.x - a.x, dy = b.y - a.y;
+  if (dx == 0 && dy == 0) return;
+  Primitive p{};
+  p.kind = PrimKind::Line;
+  p.xMajor = std::fabs(dx) >= std::fabs(dy);
+  const float amaj = p.xMajor ? a.x : a.y, bmaj = p.xMajor ? b.x : b.y;
+  const float amin = p.xMajor ? a.y : a.x, bmin = p.xMajor ? b.y : b.x;
+  p.lineM = (bmin - amin) / (bmaj - amaj);
+  p.lineQ = amin - p.lineM * amaj;
+  const int lo = int(std::floor(std::min(amaj, bmaj) + 0.5f)), hi = int(std::floor(std::max(amaj, bmaj) + 0.5f));
+  const int mlo = int(std::floor(std::min(amin, bmin) - 1)), mhi = int(std::ceil(std::max(amin, bmin) + 1));
+  p.minX = std::max(bounds.left, p.xMajor ? lo : mlo);
+  p.maxX = std::min(bounds.right - 1, p.xMajor ? hi : mhi);
+  p.minY = std::max(bounds.top, p.xMajor ? mlo : lo);
+  p.maxY = std::min(bounds.bottom - 1, p.xMajor ? mhi : hi);
+  if (p.minX > p.maxX || p.minY > p.maxY) return;
+  p.originX = a.x;
+  p.originY = a.y;
+  p.planeOffset = uint32_t(d.planes.size());
+  const float len = bmaj - amaj;
+  auto plane = [&](double va, double vb) {
+    d.planes.push_back(float(va));
+    const float g = float((vb - va) / len);
+    d.planes.push_back(p.xMajor ? g : 0.0f);
+    d.planes.push_back(p.xMajor ? 0.0f : g);
+  };
+  plane(a.invW, b.invW);
+  plane(a.z, b.z);
+  for (const InterpolatedInput& in : d.inputs) {
+    if (in.flat) {
+      plane(a.varyings[in.varying][in.component], a.varyings[in.varying][in.component]);
+      continue;
+    }
+    plane(double(a.varyings[in.varying][in.component]) * a.invW,
+          double(b.varyings[in.varying][in.component]) * b.invW);
+  }
+  d.prims.push_back(p);
+}
+
+void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bounds) {
+  Primitive p{};
+  p.kind = PrimKind::Point;
+  const float h = std::max(size, 1.0f) * 0.5f;
+  // Pixels whose centres lie in [x - h, x + h).
+  p.minX = std::max(bounds.left, int(std::ceil(a.x - h)));
+  p.maxX = std::min(bounds.right - 1, int(std::ceil(a.x + h)) - 1);
+  p.minY = std::max(bounds.top, int(std::ceil(a.y - h)));
+  p.maxY = std::min(bounds.bottom - 1, int(std::ceil(a.y + h)) - 1);
+  if (p.minX > p.maxX || p.minY > p.maxY) return;
+  p.originX = a.x;
+  p.originY = a.y;
+  p.planeOffset = uint32_t(d.planes.size());
+  auto constant = [&](float v) {
+    d.planes.push_back(v);
+    d.planes.push_back(0);
+    d.planes.push_back(0);
+  };
+  constant(a.invW);
+  constant(a.z);
+  for (const InterpolatedInput& in : d.inputs)
+    constant(a.varyings[in.varying][in.component] * (in.flat ? 1.0f : a.invW));
+  d.prims.push_back(p);
+}
+
+}  // namespace
+
+void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVertex,
+                  const void* indices, bool index32, uint32_t vertexCount, uint32_t firstVertex) {
+  if (!target_) fail("draw without a render target");
+  if (type < PT_POINTLIST || type > PT_TRIANGLEFAN) fail("unknown primitive type {}", uint32_t(type));
+  const uint32_t indexCount = verticesForPrimitives(type, primitiveCount);
+  if (primitiveCount == 0 || indexCount == 0) return;
+  const DeviceState& st = state_;
+  const VertexDeclaration& decl = st.declaration;
+  if (decl.elements.empty()) fail("draw without a vertex declaration or FVF");
+
+  // Vertex indices of the primitive stream (relative to baseVertex).
+  std::vector<uint32_t> idx(indexCount);
+  uint32_t lo = UINT32_MAX, hi = 0;
+  for (uint32_t i = 0; i < indexCount; ++i) {
+    uint32_t v;
+    if (!indices) v = firstVertex + i;
+    else if (index32) std::memcpy(&v, static_cast<const uint8_t*>(indices) + 4 * i, 4);
+    else {
+      uint16_t s;
+      std::memcpy(&s, static_cast<const uint8_t*>(indices) + 2 * i, 2);
+      v = s;
+    }
+    v = uint32_t(int64_t(v) + baseVertex);
+    idx[i] = v;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  const uint32_t count = hi - lo + 1;
+  if (count > (1u << 24)) fail("draw references {} vertices; at most 16777216 are supported", count);
+
+  // Vertex stage.
+  StreamView streams[16];
+  for (int s = 0; s < 16; ++s) {
+    const StreamSource& src = st.streams[s];
+    if (!src.buffer) continue;
+    streams[s].data = src.buffer->data.data() + std::min<size_t>(src.offset, src.buffer->data.size());
+    streams[s].size = src.buffer->data.size() - std::min<size_t>(src.offset, src.buffer->data.size());
+    streams[s].stride = src.stride;
+  }
+  FixedFunctionVertexConfig vcfg;
+  vcfg.pretransformed = decl.find(DECLUSAGE_POSITIONT, 0) != nullptr;
+  vcfg.hasNormal = decl.find(DECLUSAGE_NORMAL, 0) != nullptr;
+  vcfg.hasDiffuse = decl.find(DECLUSAGE_COLOR, 0) != nullptr;
+  vcfg.hasSpecular = decl.find(DECLUSAGE_COLOR, 1) != nullptr;
+  vcfg.hasPSize = decl.find(DECLUSAGE_PSIZE, 0) != nullptr;
+  for (int t = 0; t < 8; ++t)
+    if (const VertexElement* e = decl.find(DECLUSAGE_TEXCOORD, uint8_t(t)))
+      vcfg.texCoordDims[t] = e->type <= DECLTYPE_FLOAT4 ? e->type - DECLTYPE_FLOAT1 + 1 : 4;
+  const exec::Program vprog = buildFixedFunctionVertexProgram(st, vcfg);
+
+  auto& verts = impl_->vertices;
+  verts.resize(count);
+  const uint32_t batches = (count + kBatchLanes - 1) / kBatchLanes;
+  std::vector<exec::BatchRegisters> vregs(impl_->pool.threadCount());
+  for (auto& r : vregs) {
+    r.resize(vprog);
+    if (r.inputs.size() < size_t(kVertexInputCount)) r.inputs.resize(kVertexInputCount);
+    if (r.outputs.size() < size_t(kVertexOutputCount)) r.outputs.resize(kVertexOutputCount);
+  }
+  exec::ExecContext vctx;
+  vctx.constants = st.vsConstF.data();
+  vctx.constantCount = int(st.vsConstF.size());
+  impl_->pool.parallelFor(batches, [&](size_t b, int thread) {
+    exec::BatchRegisters& r = vregs[thread];
+    const uint32_t first = lo + uint32_t(b) * kBatchLanes;
+    const int n = int(std::min<uint32_t>(kBatchLanes, lo + count - first));
+    resetInputs(r);
+    fetchVertices(decl, streams, first, n, r);
+    for (auto& o : r.outputs) std::memset(&o, 0, sizeof(o));
+    exec::execute(vprog, vctx, r);
+    for (int l = 0; l < n; ++l) {
+      ShadedVertex& sv = verts[first - lo + l];
+      for (int o = 0; o < kVaryingCount; ++o)
+        for (int c = 0; c < 4; ++c) sv.out[o][c] = r.outputs[o].c[c][l];
+    }
+  });
+
+  // Pixel stage program and samplers.
+  FixedFunctionPixelConfig pcfg;
+  for (int s = 0; s < 8; ++s) pcfg.textures[s] = st.textures[s].get();
+  exec::Program pprog = buildFixedFunctionPixelProgram(st, pcfg);
+  appendSpecularAndFog(pprog, st, true);
+
+  std::array<BoundSampler, kMaxPixelSamplers> bound;
+  std::array<exec::SamplerBinding, kMaxPixelSamplers> bindings;
+  for (int s = 0; s < kMaxPixelSamplers; ++s) {
+    bound[s].texture = st.textures[s].get();
+    bound[s].state = decodeSamplerState(st, s);
+    bindings[s].context = &bound[s];
+    bindings[s].sample = sampleBound;
+  }
+
+  RasterDraw d;
+  d.state = &st;
+  d.pixelProgram = &pprog;
+  d.execContext.constants = st.psConstF.data();
+  d.execContext.constantCount = int(st.psConstF.size());
+  d.execContext.samplers = bindings.data();
+  d.execContext.samplerCount = kMaxPixelSamplers;
+  const bool flat = st.rs(RS_SHADEMODE) == SHADE_FLAT;
+  const auto used = inputComponentsRead(pprog);
+  for (int i = 0; i < 32; ++i) {
+    if (!used[i]) continue;
+    if (i == kPixelInPosition) {
+      d.usesPosition = true;
+      continue;
+    }
+    const int vary = varyingForPixelInput(i);
+    if (vary < 0) continue;
+    for (int c = 0; c < 4; ++c)
+      if (used[i] & (1 << c))
+        d.inputs.push_back(InterpolatedInput{uint8_t(i), uint8_t(c), uint8_t(vary),
+                                             flat && (i == kPixelInDiffuse || i == kPixelInSpecular)});
+  }
+  d.color = target_->data(0, 0);
+  d.colorPitch = int(target_->rowPitch(0));
+  d.colorHasAlpha = target_->format() == Format::A8R8G8B8;
+  d.width = target_->width();
+  d.height = target_->height();
+  d.depth = depth_.get();
+  d.depthTest = depth_ && st.rs(RS_ZENABLE) != ZB_FALSE;
+  d.depthWrite = d.depthTest && st.rs(RS_ZWRITEENABLE) != 0;
+  d.depthFunc = st.rs(RS_ZFUNC);
+  d.stencil = depth_ && st.rs(RS_STENCILENABLE) != 0;
+  d.alphaTest = st.rs(RS_ALPHATESTENABLE) != 0;
+  d.alphaFunc = st.rs(RS_ALPHAFUNC);
+  bool kills = false;
+  for (const auto& in : pprog.code) kills |= in.op == exec::Op::Kill;
+  d.earlyDepth = d.depthTest && !d.stencil && !d.alphaTest && !kills;
+  d.blend.enable = st.rs(RS_ALPHABLENDENABLE) != 0;
+  d.blend.src = st.rs(RS_SRCBLEND);
+  d.blend.dst = st.rs(RS_DESTBLEND);
+  d.blend.op = st.rs(RS_BLENDOP);
+  const bool separate = st.rs(RS_SEPARATEALPHABLENDENABLE) != 0;
+  d.blend.srcA = separate ? st.rs(RS_SRCBLENDALPHA) : d.blend.src;
+  d.blend.dstA = separate ? st.rs(RS_DESTBLENDALPHA) : d.blend.dst;
+  d.blend.opA = separate ? st.rs(RS_BLENDOPALPHA) : d.blend.op;
+  d.blend.factor = colorFromD3D(st.rs(RS_BLENDFACTOR));
+  d.blend.writeMask = st.rs(RS_COLORWRITEENABLE) & 0xf;
+  std::vector<uint64_t> shadedCounter(1, 0);
+  d.pixelsShaded = &stats_.pixelsShaded;
+
+  // Primitive assembly, clipping and setup.
+  const Rect bounds = activeRect(st, d.width, d.height);
+  const Viewport& vp = st.viewport;
+  const float gb = std::max(1.0f, 16384.0f / float(std::max({vp.width, vp.height, 1})));
+  const uint32_t cull = st.rs(RS_CULLMODE);
+  const uint32_t fill = st.rs(RS_FILLMODE);
+  const float pointSize = std::clamp(st.rsFloat(RS_POINTSIZE), st.rsFloat(RS_POINTSIZE_MIN),
+                                     std::max(st.rsFloat(RS_POINTSIZE_MIN), st.rsFloat(RS_POINTSIZE_MAX)));
+
+  auto toScreen = [&](const Vec4* out, SetupVertex& s) {
+    const Vec4& p = out[0];
+    if (vcfg.pretransformed) {
+      // XYZRHW: already in screen space; rhw is 1/w for perspective interpolation.
+      s.x = p.x;
+      s.y = p.y;
+      s.z = p.z;
+      s.invW = p.w != 0 ? p.w : 1.0f;
+    } else {
+      const float iw = 1.0f / p.w;
+      s.x = float(vp.x) + (1.0f + p.x * iw) * 0.5f * float(vp.width);
+      s.y = float(vp.y) + (1.0f - p.y * iw) * 0.5f * float(vp.height);
+      s.z = vp.minZ + p.z * iw * (vp.maxZ - vp.minZ);
+      s.invW = iw;
+    }
+    s.varyings = out;
+  };
+  auto vertexOut = [&](uint32_t i) -> const Vec4* { return verts[i - lo].out; };
+  auto outside = [&](const Vec4& p) {  // needs clipping against near/far/guard band
+    return p.z < 0 || p.z > p.w || std::fabs(p.x) > gb * p.w || std::fabs(p.y) > gb * p.w;
+  };
+
+  std::vector<ClipVertex> poly;
+  auto triangle = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
+    const Vec4* o[3] = {vertexOut(i0), vertexOut(i1), vertexOut(i2)};
+    auto emit = [&](const Vec4* a, const Vec4* b, const Vec4* c) {
+      SetupVertex sv[3];
+      toScreen(a, sv[0]);
+      toScreen(b, sv[1]);
+      toScreen(c, sv[2]);
+      if (fill == FILL_SOLID) {
+        setupTriangle(d, sv, cull, bounds, flat);
+        return;
+      }
+      // Wireframe/point fill: cull first, then draw edges or vertices.
+      const double area = double(sv[1].x - sv[0].x) * (sv[2].y - sv[0].y) -
+                          double(sv[2].x - sv[0].x) * (sv[1].y - sv[0].y);
+      if (area == 0 || (cull == CULL_CCW && area < 0) || (cull == CULL_CW && area > 0)) return;
+      if (fill == FILL_WIREFRAME) {
+        setupLine(d, sv[0], sv[1], bounds, flat);
+        setupLine(d, sv[1], sv[2], bounds, flat);
+        setupLine(d, sv[2], sv[0], bounds, flat);
+      } else {
+        for (auto& v : sv) setupPoint(d, v, pointSize, bounds);
+      }
+    };
+    if (vcfg.pretransformed || (!outside(o[0][0]) && !outside(o[1][0]) && !outside(o[2][0]))) {
+      emit(o[0], o[1], o[2]);
+      return;
+    }
+    poly.assign(3, {});
+    for (int k = 0; k < 3; ++k) std::memcpy(poly[k].v, o[k], sizeof(poly[k].v));
+    clipPolygon(poly, gb);
+    for (size_t k = 2; k < poly.size(); ++k) {
+      // Clipped vertices keep the provoking (first) vertex's flat colors.
+      emit(poly[0].v, poly[k - 1].v, poly[k].v);
+    }
+  };
+  auto line = [&](uint32_t i0, uint32_t i1) {
+    const Vec4* a = vertexOut(i0);
+    const Vec4* b = vertexOut(i1);
+    if (!vcfg.pretransformed && (outside(a[0]) || outside(b[0]))) {
+      // Clip the segment parametrically against the same planes.
+      float t0 = 0, t1 = 1;
+      for (int plane = 0; plane < 6; ++plane) {
+        const float da = planeDistance(a[0], plane, gb), db = planeDistance(b[0], plane, gb);
+        if (da < 0 && db < 0) return;
+        if (da < 0) t0 = std::max(t0, da / (da - db));
+        if (db < 0) t1 = std::min(t1, da / (da - db));
+      }
+      if (t0 >= t1) return;
+      ClipVertex ca, cb;
+      for (int k = 0; k < kVaryingCount; ++k)
+        for (int j = 0; j < 4; ++j) {
+          ca.v[k][j] = a[k][j] + (b[k][j] - a[k][j]) * t0;
+          cb.v[k][j] = a[k][j] + (b[k][j] - a[k][j]) * t1;
+        }
+      SetupVertex sa, sb;
+      toScreen(ca.v, sa);
+      toScreen(cb.v, sb);
+      setupLine(d, sa, sb, bounds, flat);
+      return;
+    }
+    SetupVertex sa, sb;
+    toScreen(a, sa);
+    toScreen(b, sb);
+    setupLine(d, sa, sb, bounds, flat);
+  };
+  auto point = [&](uint32_t i) {
+    const Vec4* a = vertexOut(i);
+    if (!vcfg.pretransformed && outside(a[0])) return;
+    SetupVertex s;
+    toScreen(a, s);
+    const float size = vcfg.hasPSize ? a[kVertexOutPSize].x : pointSize;
+    setupPoint(d, s, size, bounds);
+  };
+
+  switch (type) {
+    case PT_POINTLIST:
+      for (uint32_t i = 0; i < primitiveCount; ++i) point(idx[i]);
+      break;
+    case PT_LINELIST:
+      for (uint32_t i = 0; i < primitiveCount; ++i) line(idx[2 * i], idx[2 * i + 1]);
+      break;
+    case PT_LINESTRIP:
+      for (uint32_t i = 0; i < primitiveCount; ++i) line(idx[i], idx[i + 1]);
+      break;
+    case PT_TRIANGLELIST:
+      for (uint32_t i = 0; i < primitiveCount; ++i) triangle(idx[3 * i], idx[3 * i + 1], idx[3 * i + 2]);
+      break;
+    case PT_TRIANGLESTRIP:
+      // Odd triangles swap two vertices to keep the winding consistent.
+      for (uint32_t i = 0; i < primitiveCount; ++i) {
+        if (i & 1) triangle(idx[i + 1], idx[i], idx[i + 2]);
+        else triangle(idx[i], idx[i + 1], idx[i + 2]);
+      }
+      break;
+    case PT_TRIANGLEFAN:
+      // D3D's provoking vertex for flat shading in a fan is the second vertex of each
+      // triangle (v[i+1]); start the triangle there.
+      for (uint32_t i = 0; i < primitiveCount; ++i) triangle(idx[i + 1], idx[i + 2], idx[0]);
+      break;
+  }
+  stats_.primitives += primitiveCount;
+  rasterize(d, impl_->pool);
+  target_->markDirty();
+}
+
+}  // namespace refx

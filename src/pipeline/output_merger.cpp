@@ -1,0 +1,166 @@
+#include "output_merger.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace refx::pipeline {
+
+using namespace d3d;
+
+bool compare(uint32_t func, float a, float b) {
+  switch (func) {
+    case CMP_NEVER: return false;
+    case CMP_LESS: return a < b;
+    case CMP_EQUAL: return a == b;
+    case CMP_LESSEQUAL: return a <= b;
+    case CMP_GREATER: return a > b;
+    case CMP_NOTEQUAL: return a != b;
+    case CMP_GREATEREQUAL: return a >= b;
+    default: return true;
+  }
+}
+
+static bool compareU(uint32_t func, uint32_t a, uint32_t b) {
+  switch (func) {
+    case CMP_NEVER: return false;
+    case CMP_LESS: return a < b;
+    case CMP_EQUAL: return a == b;
+    case CMP_LESSEQUAL: return a <= b;
+    case CMP_GREATER: return a > b;
+    case CMP_NOTEQUAL: return a != b;
+    case CMP_GREATEREQUAL: return a >= b;
+    default: return true;
+  }
+}
+
+uint16_t earlyDepthTest(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z,
+                        bool writeDepth) {
+  uint16_t pass = 0;
+  for (int l = 0; l < kBatchLanes; ++l) {
+    if (!(mask & (1 << l))) continue;
+    size_t i = size_t(by + kLaneY[l]) * d.width + (bx + kLaneX[l]);
+    if (compare(d.depthFunc, z[l], d.depth->depth[i])) {
+      pass |= uint16_t(1u << l);
+      if (writeDepth) d.depth->depth[i] = z[l];
+    }
+  }
+  return pass;
+}
+
+static uint8_t stencilOp(uint32_t op, uint8_t s, uint8_t ref, uint8_t writeMask) {
+  uint8_t r = s;
+  switch (op) {
+    case STENCILOP_ZERO: r = 0; break;
+    case STENCILOP_REPLACE: r = ref; break;
+    case STENCILOP_INCRSAT: r = s == 255 ? 255 : uint8_t(s + 1); break;
+    case STENCILOP_DECRSAT: r = s == 0 ? 0 : uint8_t(s - 1); break;
+    case STENCILOP_INVERT: r = uint8_t(~s); break;
+    case STENCILOP_INCR: r = uint8_t(s + 1); break;
+    case STENCILOP_DECR: r = uint8_t(s - 1); break;
+    default: break;  // KEEP
+  }
+  return uint8_t((s & ~writeMask) | (r & writeMask));
+}
+
+// Blend factor for one channel c (0..3) of (r,g,b,a).
+static float blendFactor(uint32_t f, int c, const float* src, const float* dst, Color4 k) {
+  const float kc[4] = {k.r, k.g, k.b, k.a};
+  switch (f) {
+    case BLEND_ZERO: return 0;
+    case BLEND_ONE: return 1;
+    case BLEND_SRCCOLOR: return src[c];
+    case BLEND_INVSRCCOLOR: return 1 - src[c];
+    case BLEND_SRCALPHA: return src[3];
+    case BLEND_INVSRCALPHA: return 1 - src[3];
+    case BLEND_DESTALPHA: return dst[3];
+    case BLEND_INVDESTALPHA: return 1 - dst[3];
+    case BLEND_DESTCOLOR: return dst[c];
+    case BLEND_INVDESTCOLOR: return 1 - dst[c];
+    case BLEND_SRCALPHASAT: return c == 3 ? 1.0f : std::min(src[3], 1 - dst[3]);
+    case BLEND_BLENDFACTOR: return kc[c];
+    case BLEND_INVBLENDFACTOR: return 1 - kc[c];
+    default: return 1;
+  }
+}
+
+static float blendOp(uint32_t op, float s, float fs, float dst, float fd) {
+  switch (op) {
+    case BLENDOP_SUBTRACT: return s * fs - dst * fd;
+    case BLENDOP_REVSUBTRACT: return dst * fd - s * fs;
+    case BLENDOP_MIN: return std::min(s, dst);
+    case BLENDOP_MAX: return std::max(s, dst);
+    default: return s * fs + dst * fd;
+  }
+}
+
+static inline uint8_t toUnorm8(float v) {
+  // NaN and negative go to 0; round to nearest.
+  if (!(v > 0.0f)) return 0;
+  if (v >= 1.0f) return 255;
+  return static_cast<uint8_t>(v * 255.0f + 0.5f);
+}
+
+void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask,
+                const float (*color)[kBatchLanes], const float* z, bool depthAlreadyTested, bool counterClockwise) {
+  const DeviceState& st = *d.state;
+  for (int l = 0; l < kBatchLanes; ++l) {
+    if (!(mask & (1 << l))) continue;
+    const int x = bx + kLaneX[l], y = by + kLaneY[l];
+    float src[4] = {color[0][l], color[1][l], color[2][l], color[3][l]};
+    // Alpha test compares in 8-bit as hardware does (ALPHAREF is 0..255).
+    if (d.alphaTest) {
+      int a8 = toUnorm8(src[3]);
+      if (!compareU(d.alphaFunc, uint32_t(a8), st.rs(RS_ALPHAREF) & 0xff)) continue;
+    }
+    const size_t pi = size_t(y) * d.width + x;
+    if (d.stencil && d.depth) {
+      uint8_t& s = d.depth->stencil[pi];
+      const uint8_t ref = uint8_t(st.rs(RS_STENCILREF)), rmask = uint8_t(st.rs(RS_STENCILMASK));
+      const uint8_t wmask = uint8_t(st.rs(RS_STENCILWRITEMASK));
+      // Two-sided stencil: counter-clockwise primitives use the CCW_ states.
+      const bool ccw = counterClockwise && st.rs(RS_TWOSIDEDSTENCILMODE) != 0;
+      const uint32_t func = st.rs(ccw ? RS_CCW_STENCILFUNC : RS_STENCILFUNC);
+      if (!compareU(func, ref & rmask, s & rmask)) {
+        s = stencilOp(st.rs(ccw ? RS_CCW_STENCILFAIL : RS_STENCILFAIL), s, ref, wmask);
+        continue;
+      }
+      bool zpass = true;
+      if (d.depthTest && !depthAlreadyTested) zpass = compare(d.depthFunc, z[l], d.depth->depth[pi]);
+      if (!zpass) {
+        s = stencilOp(st.rs(ccw ? RS_CCW_STENCILZFAIL : RS_STENCILZFAIL), s, ref, wmask);
+        continue;
+      }
+      s = stencilOp(st.rs(ccw ? RS_CCW_STENCILPASS : RS_STENCILPASS), s, ref, wmask);
+      if (d.depthTest && d.depthWrite && !depthAlreadyTested) d.depth->depth[pi] = z[l];
+    } else if (d.depthTest && !depthAlreadyTested) {
+      if (!compare(d.depthFunc, z[l], d.depth->depth[pi])) continue;
+      if (d.depthWrite) d.depth->depth[pi] = z[l];
+    }
+    uint8_t* px = d.color + size_t(y) * d.colorPitch + size_t(x) * 4;  // B G R A
+    const uint32_t wm = d.blend.writeMask;
+    if (d.blend.enable) {
+      float dst[4] = {px[2] / 255.0f, px[1] / 255.0f, px[0] / 255.0f,
+                      d.colorHasAlpha ? px[3] / 255.0f : 1.0f};
+      for (int c = 0; c < 4; ++c) src[c] = std::clamp(src[c], 0.0f, 1.0f);
+      float out[4];
+      uint32_t sf = d.blend.src, df = d.blend.dst;
+      if (sf == BLEND_BOTHSRCALPHA) { sf = BLEND_SRCALPHA; df = BLEND_INVSRCALPHA; }
+      if (sf == BLEND_BOTHINVSRCALPHA) { sf = BLEND_INVSRCALPHA; df = BLEND_SRCALPHA; }
+      for (int c = 0; c < 3; ++c)
+        out[c] = blendOp(d.blend.op, src[c], blendFactor(sf, c, src, dst, d.blend.factor), dst[c],
+                         blendFactor(df, c, src, dst, d.blend.factor));
+      uint32_t sa = d.blend.srcA, da = d.blend.dstA;
+      if (sa == BLEND_BOTHSRCALPHA) { sa = BLEND_SRCALPHA; da = BLEND_INVSRCALPHA; }
+      if (sa == BLEND_BOTHINVSRCALPHA) { sa = BLEND_INVSRCALPHA; da = BLEND_SRCALPHA; }
+      out[3] = blendOp(d.blend.opA, src[3], blendFactor(sa, 3, src, dst, d.blend.factor), dst[3],
+                       blendFactor(da, 3, src, dst, d.blend.factor));
+      for (int c = 0; c < 4; ++c) src[c] = out[c];
+    }
+    if (wm & CW_RED) px[2] = toUnorm8(src[0]);
+    if (wm & CW_GREEN) px[1] = toUnorm8(src[1]);
+    if (wm & CW_BLUE) px[0] = toUnorm8(src[2]);
+    if (wm & CW_ALPHA) px[3] = d.colorHasAlpha ? toUnorm8(src[3]) : 255;
+  }
+}
+
+}  // namespace refx::pipeline

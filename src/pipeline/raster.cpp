@@ -1,0 +1,161 @@
+#include "raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "ff_pixel.h"
+#include "output_merger.h"
+
+namespace refx::pipeline {
+
+namespace {
+
+constexpr int N = kBatchLanes;
+
+struct TileBins {
+  int tilesX = 0, tilesY = 0;
+  std::vector<std::vector<uint32_t>> lists;  // primitive indices per tile, in order
+};
+
+void bin(const RasterDraw& d, TileBins& bins) {
+  bins.tilesX = (d.width + kTileSize - 1) / kTileSize;
+  bins.tilesY = (d.height + kTileSize - 1) / kTileSize;
+  bins.lists.assign(size_t(bins.tilesX) * bins.tilesY, {});
+  for (uint32_t i = 0; i < d.prims.size(); ++i) {
+    const Primitive& p = d.prims[i];
+    if (p.minX > p.maxX || p.minY > p.maxY) continue;
+    for (int ty = p.minY / kTileSize; ty <= p.maxY / kTileSize; ++ty)
+      for (int tx = p.minX / kTileSize; tx <= p.maxX / kTileSize; ++tx)
+        bins.lists[size_t(ty) * bins.tilesX + tx].push_back(i);
+  }
+}
+
+// Coverage of a 4x4 batch at (bx, by) by primitive p.
+uint16_t coverage(const Primitive& p, int bx, int by) {
+  uint16_t mask = 0;
+  if (p.kind == PrimKind::Triangle) {
+    constexpr int64_t one = int64_t(1) << kSubPixelBits;
+    int64_t e0[3];
+    for (int k = 0; k < 3; ++k)
+      e0[k] = p.edgeA[k] * (bx * one) + p.edgeB[k] * (by * one) + p.edgeC[k] + p.edgeBias[k];
+    for (int l = 0; l < N; ++l) {
+      const int64_t dx = kLaneX[l] * one, dy = kLaneY[l] * one;
+      bool in = true;
+      for (int k = 0; k < 3; ++k) in &= e0[k] + p.edgeA[k] * dx + p.edgeB[k] * dy > 0;
+      mask |= uint16_t(in) << l;
+    }
+  } else if (p.kind == PrimKind::Line) {
+    // One pixel per step along the major axis: the pixel whose centre is nearest
+    // the line (ties toward the smaller coordinate).
+    for (int l = 0; l < N; ++l) {
+      const int x = bx + kLaneX[l], y = by + kLaneY[l];
+      const int major = p.xMajor ? x : y, minor = p.xMajor ? y : x;
+      const float m = p.lineM * float(major) + p.lineQ;
+      const bool in = minor == int(std::ceil(m - 0.5f));
+      mask |= uint16_t(in) << l;
+    }
+  } else {
+    mask = 0xffff;  // points: the bounding box is the point's footprint
+  }
+  // Clip to the primitive's scissor/viewport bounds.
+  for (int l = 0; l < N; ++l) {
+    const int x = bx + kLaneX[l], y = by + kLaneY[l];
+    if (x < p.minX || x > p.maxX || y < p.minY || y > p.maxY) mask &= uint16_t(~(1u << l));
+  }
+  return mask;
+}
+
+struct TileWorker {
+  exec::BatchRegisters regs;
+  alignas(64) float z[N];
+  alignas(64) float invW[N];
+};
+
+void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_t mask,
+                TileWorker& w, uint64_t& shaded) {
+  const float* pl = d.planes.data() + p.planeOffset;
+  float fx[N], fy[N];
+  for (int l = 0; l < N; ++l) {
+    fx[l] = float(bx + kLaneX[l]) - p.originX;
+    fy[l] = float(by + kLaneY[l]) - p.originY;
+  }
+  // invW and z planes.
+  for (int l = 0; l < N; ++l) w.invW[l] = pl[0] + pl[1] * fx[l] + pl[2] * fy[l];
+  for (int l = 0; l < N; ++l) w.z[l] = std::clamp(pl[3] + pl[4] * fx[l] + pl[5] * fy[l], 0.0f, 1.0f);
+  if (d.earlyDepth) {
+    mask = earlyDepthTest(d, bx, by, mask, w.z, d.depthWrite);
+    if (!mask) return;
+  }
+  float wv[N];
+  for (int l = 0; l < N; ++l) wv[l] = 1.0f / w.invW[l];
+  const float* ip = pl + 6;
+  for (const InterpolatedInput& in : d.inputs) {
+    float* dst = w.regs.inputs[in.input].c[in.component];
+    if (in.flat) {
+      for (int l = 0; l < N; ++l) dst[l] = ip[0];
+    } else {
+      for (int l = 0; l < N; ++l) dst[l] = (ip[0] + ip[1] * fx[l] + ip[2] * fy[l]) * wv[l];
+    }
+    ip += 3;
+  }
+  if (d.usesPosition) {
+    auto& pos = w.regs.inputs[kPixelInPosition];
+    for (int l = 0; l < N; ++l) {
+      pos.c[0][l] = float(bx + kLaneX[l]);
+      pos.c[1][l] = float(by + kLaneY[l]);
+      pos.c[2][l] = w.z[l];
+      pos.c[3][l] = wv[l];
+    }
+  }
+  w.regs.laneMask = mask;
+  exec::execute(*d.pixelProgram, d.execContext, w.regs);
+  mask &= w.regs.laneMask;
+  shaded += static_cast<uint64_t>(__builtin_popcount(mask));
+  if (!mask) return;
+  mergeBatch(d, bx, by, mask, w.regs.outputs[kPixelOutColor].c, w.z, d.earlyDepth,
+             p.counterClockwise);
+}
+
+void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorker& w,
+               uint64_t& shaded) {
+  const int tx = int(tile % bins.tilesX), ty = int(tile / bins.tilesX);
+  const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+  const int x1 = std::min(x0 + kTileSize, d.width) - 1, y1 = std::min(y0 + kTileSize, d.height) - 1;
+  for (uint32_t pi : bins.lists[tile]) {
+    const Primitive& p = d.prims[pi];
+    const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
+    const int maxX = std::min(p.maxX, x1), maxY = std::min(p.maxY, y1);
+    for (int by = minY; by <= maxY; by += 4)
+      for (int bx = minX; bx <= maxX; bx += 4) {
+        const uint16_t mask = coverage(p, bx, by);
+        if (mask) shadeBatch(d, p, bx, by, mask, w, shaded);
+      }
+  }
+}
+
+}  // namespace
+
+void rasterize(RasterDraw& draw, ThreadPool& pool) {
+  if (draw.prims.empty()) return;
+  TileBins bins;
+  bin(draw, bins);
+  std::vector<size_t> busy;
+  for (size_t t = 0; t < bins.lists.size(); ++t)
+    if (!bins.lists[t].empty()) busy.push_back(t);
+  const int threads = pool.threadCount();
+  std::vector<TileWorker> workers(threads);
+  for (auto& w : workers) {
+    w.regs.resize(*draw.pixelProgram);
+    if (int(w.regs.inputs.size()) < kPixelInputCount) w.regs.inputs.resize(kPixelInputCount);
+    for (auto& in : w.regs.inputs) std::memset(&in, 0, sizeof(in));
+  }
+  std::vector<uint64_t> shaded(threads, 0);
+  pool.parallelFor(busy.size(), [&](size_t i, int thread) {
+    shadeTile(draw, bins, busy[i], workers[thread], shaded[thread]);
+  });
+  if (draw.pixelsShaded)
+    for (uint64_t s : shaded) *draw.pixelsShaded += s;
+}
+
+}  // namespace refx::pipeline

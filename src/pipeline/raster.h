@@ -1,0 +1,92 @@
+// Primitive setup and the tiled rasterizer. A draw is turned into screen-space
+// primitives, binned into 64x64 tiles, and each tile is shaded by one thread in
+// submission order, so the output does not depend on the thread count.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "refx/core/batch.h"
+#include "refx/core/thread_pool.h"
+#include "refx/exec/interpreter.h"
+#include "refx/pipeline/device.h"
+
+namespace refx::pipeline {
+
+constexpr int kTileSize = 64;
+constexpr int kSubPixelBits = 8;  // edge functions in 1/256 pixel units
+
+// A vertex after the vertex stage: clip-space position and all vertex outputs.
+constexpr int kVaryingCount = 13;  // vertex outputs 0..12 (see ff_vertex.h)
+struct ShadedVertex {
+  Vec4 out[kVaryingCount];  // out[0] = clip position (or screen position when pretransformed)
+};
+
+// Screen-space vertex ready for setup.
+struct ScreenVertex {
+  float x, y, z;  // viewport coordinates, z in [0,1]
+  float invW;     // 1/w_clip (perspective), 1 for orthographic/pretransformed rhw
+  const ShadedVertex* v;
+  Vec4 varying[kVaryingCount];  // copy for clipped vertices (index 0 unused)
+};
+
+// One input component of the pixel program and where it comes from.
+struct InterpolatedInput {
+  uint8_t input;      // pixel input register
+  uint8_t component;  // 0..3
+  uint8_t varying;    // vertex output index
+  bool flat;          // flat shading: first vertex value
+};
+
+enum class PrimKind : uint8_t { Triangle, Line, Point };
+
+struct Primitive {
+  PrimKind kind;
+  bool counterClockwise;  // screen-space winding (two-sided stencil)
+  int minX, minY, maxX, maxY;  // inclusive pixel bounds, clipped to the scissor/viewport
+  // Triangles: edge functions E = A*X + B*Y + C in subpixel units, inside when E + bias > 0.
+  int64_t edgeA[3], edgeB[3], edgeC[3], edgeBias[3];
+  // Lines: major axis and the line y = m*x + q (or x = m*y + q) in pixels.
+  bool xMajor;
+  float lineM, lineQ;
+  // Interpolation planes: value(x,y) = base + dx*(x - originX) + dy*(y - originY).
+  float originX, originY;
+  uint32_t planeOffset;  // into RasterDraw::planes: [invW, z, then inputs' attr/w (or attr when flat)]
+};
+
+// Everything the tile workers need for one draw.
+struct RasterDraw {
+  const DeviceState* state = nullptr;
+  const exec::Program* pixelProgram = nullptr;
+  exec::ExecContext execContext;
+  std::vector<InterpolatedInput> inputs;
+  bool usesPosition = false;  // pixel input kPixelInPosition read
+  std::vector<Primitive> prims;
+  std::vector<float> planes;  // 3 floats per plane
+  // Targets
+  uint8_t* color = nullptr;  // A8R8G8B8 rows
+  int colorPitch = 0;
+  bool colorHasAlpha = true;
+  DepthStencilSurface* depth = nullptr;
+  int width = 0, height = 0;
+  bool earlyDepth = false;
+  // Precomputed output-merger state.
+  struct Blend {
+    bool enable;
+    uint32_t src, dst, op, srcA, dstA, opA;
+    Color4 factor;
+    uint32_t writeMask;
+  } blend{};
+  bool alphaTest = false;
+  uint32_t alphaFunc = 8;
+  float alphaRef = 0;
+  bool depthTest = false, depthWrite = false;
+  uint32_t depthFunc = 4;
+  bool stencil = false;
+  uint64_t* pixelsShaded = nullptr;  // per-thread counters (array of threadCount)
+};
+
+// Bins the draw's primitives and shades all tiles on the pool.
+void rasterize(RasterDraw& draw, ThreadPool& pool);
+
+}  // namespace refx::pipeline
