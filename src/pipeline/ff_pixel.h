@@ -1,0 +1,41 @@
+// Fixed-function pixel processing (texture stage cascade, specular add, fog)
+// compiled once per draw into an exec::Program, so the per-pixel work runs on the
+// same interpreter as pixel shaders.
+#pragma once
+#include <array>
+
+#include "refx/exec/ir.h"
+#include "refx/pipeline/state.h"
+#include "refx/resource/texture.h"
+
+namespace refx::pipeline {
+
+// Pixel program register conventions shared by fixed function and pixel shaders.
+enum PixelInput : int {
+  kPixelInDiffuse = 0,
+  kPixelInSpecular = 1,
+  // 2..9 = coordinates for stage/texture register 0..7 (4 components; when
+  // TEXTURETRANSFORMFLAGS has PROJECTED the divisor is already in .w)
+  kPixelInTex0 = 2,
+  kPixelInFog = 10,       // .x = vertex fog factor f (1 = no fog)
+  kPixelInPosition = 11,  // (screen x, screen y, z in [0,1], eye-space w)
+  kPixelInputCount = 12
+};
+enum PixelOutput : int { kPixelOutColor = 0, kPixelOutputCount = 1 };
+
+struct FixedFunctionPixelConfig {
+  std::array<const Texture*, 8> textures{};  // texture bound to sampler n (nullptr: none)
+  // true: no texture stages; the program only applies fog to the color already in
+  // output kPixelOutColor (run after a pixel shader on the same registers).
+  bool shaderPath = false;
+};
+
+exec::Program buildFixedFunctionPixelProgram(const DeviceState& state,
+                                             const FixedFunctionPixelConfig& cfg);
+
+// Fog and specular stages appended after any pixel program writing kPixelOutColor.
+// Reads and rewrites output kPixelOutColor in place. The specular add is applied
+// only when fixedFunctionStages is true (pixel shaders add specular themselves).
+void appendSpecularAndFog(exec::Program& p, const DeviceState& state, bool fixedFunctionStages);
+
+}  // namespace refx::pipeline
