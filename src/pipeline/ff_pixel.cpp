@@ -164,7 +164,6 @@ class Builder {
       analyse();
       emitStages();
     }
-    appendSpecularAndFog(p_, state_, !cfg_.shaderPath);
     return std::move(p_);
   }
 

@@ -25,11 +25,14 @@ enum PixelOutput : int { kPixelOutColor = 0, kPixelOutputCount = 1 };
 
 struct FixedFunctionPixelConfig {
   std::array<const Texture*, 8> textures{};  // texture bound to sampler n (nullptr: none)
-  // true: no texture stages; the program only applies fog to the color already in
-  // output kPixelOutColor (run after a pixel shader on the same registers).
+  // true: no texture stages (an empty program with the register counts set), for
+  // appending specular/fog after a pixel shader.
   bool shaderPath = false;
 };
 
+// The texture stage cascade; its final CURRENT is written to kPixelOutColor.
+// Specular add and fog are not included: the caller appends them with
+// appendSpecularAndFog(p, state, true).
 exec::Program buildFixedFunctionPixelProgram(const DeviceState& state,
                                              const FixedFunctionPixelConfig& cfg);
 

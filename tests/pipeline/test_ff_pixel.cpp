@@ -69,6 +69,7 @@ class FFPixel : public ::testing::Test {
 
   Vec4 run() {
     program = buildFixedFunctionPixelProgram(state, cfg);
+    appendSpecularAndFog(program, state, !cfg.shaderPath);
     return execute(program);
   }
   Vec4 execute(const Program& p) {
@@ -689,6 +690,20 @@ TEST_F(FFPixel, ShaderPathFogsOutputWithoutSpecular) {
   // No specular add; fog 0.5: (0.2+0.5, 0.1, 0.4+0.2), alpha kept
   EXPECT_VEC4(run(), 0.7f, 0.1f, 0.6f, 0.3f);
   EXPECT_EQ(count(Op::Tex), 0);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(FFPixel, BuildLeavesSpecularAndFogToCaller) {
+  stage(0, TOP_SELECTARG1, TA_DIFFUSE, TA_DIFFUSE);
+  setRs(RS_SPECULARENABLE, 1);
+  setRs(RS_FOGENABLE, 1);
+  setRs(RS_FOGCOLOR, 0x00FF0066);
+  fog = 0.5f;
+  // The stage program alone yields D; appending gives (D + S) fogged (see SpecularThenFog).
+  EXPECT_VEC4(execute(buildFixedFunctionPixelProgram(state, cfg)), 0.2f, 0.4f, 0.6f, 0.8f);
 }
 
 }  // namespace
