@@ -1,0 +1,109 @@
+// D3DX meshes: an indexed triangle list with an FVF vertex layout, and the D3DX
+// shape generators (D3DXCreateSphere, Box, Cylinder, Torus) plus a textured sphere
+// with tangents for per-pixel lighting samples.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "refx/core/color.h"
+#include "refx/core/math.h"
+
+namespace refx::d3dx {
+
+// D3DFVF_* bits. The values are D3D's, so a device builds its vertex declaration
+// from Mesh::fvf with VertexDeclaration::fromFVF.
+namespace fvf {
+constexpr uint32_t XYZ = 0x002, XYZRHW = 0x004, XYZW = 0x4002, POSITION_MASK = 0x400e;
+constexpr uint32_t NORMAL = 0x010, PSIZE = 0x020, DIFFUSE = 0x040, SPECULAR = 0x080;
+constexpr uint32_t TEXCOUNT_MASK = 0xf00, TEXCOUNT_SHIFT = 8;
+// D3DFVF_TEXn.
+constexpr uint32_t tex(int count) { return uint32_t(count) << TEXCOUNT_SHIFT; }
+// D3DFVF_TEXCOORDSIZEn(i): bits 16+2i hold 0 = 2 floats, 1 = 3, 2 = 4, 3 = 1.
+constexpr uint32_t texCoordSize(int dims, int index) {
+  uint32_t code = dims == 1 ? 3u : dims == 3 ? 1u : dims == 4 ? 2u : 0u;
+  return code << (16 + 2 * index);
+}
+constexpr int texCoordDims(uint32_t fvf, int index) {
+  uint32_t code = (fvf >> (16 + 2 * index)) & 3;
+  return code == 0 ? 2 : code == 1 ? 3 : code == 2 ? 4 : 1;
+}
+constexpr int texCount(uint32_t fvf) { return int((fvf & TEXCOUNT_MASK) >> TEXCOUNT_SHIFT); }
+// Size in bytes of one vertex; throws refx::Error for codes D3D rejects (TEX9+).
+uint32_t stride(uint32_t fvf);
+}  // namespace fvf
+
+// Byte offsets of the elements of an FVF vertex, in D3D's fixed order (position,
+// blend weights, normal, point size, diffuse, specular, texture coordinate sets);
+// -1 where the element is absent.
+struct FVFLayout {
+  int position = -1, normal = -1, psize = -1, diffuse = -1, specular = -1;
+  int texCoord[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+  int texDims[8] = {};
+  uint32_t stride = 0;
+  static FVFLayout of(uint32_t fvf);
+};
+
+struct Mesh {
+  uint32_t fvf = 0;
+  uint32_t stride = 0;
+  std::vector<uint8_t> vertices;   // vertexCount() * stride bytes
+  std::vector<uint32_t> indices;   // triangle list, clockwise front faces
+
+  Mesh() = default;
+  // Zeroed vertices and indices for the given counts.
+  Mesh(uint32_t fvf, uint32_t vertexCount, uint32_t faceCount);
+
+  uint32_t vertexCount() const { return stride ? uint32_t(vertices.size() / stride) : 0; }
+  uint32_t faceCount() const { return uint32_t(indices.size() / 3); }
+  FVFLayout layout() const { return FVFLayout::of(fvf); }
+
+  // Element access; throws refx::Error when the vertex or the element does not exist.
+  Vec3 position(uint32_t i) const;
+  void setPosition(uint32_t i, Vec3 p);
+  Vec3 normal(uint32_t i) const;
+  void setNormal(uint32_t i, Vec3 n);
+  D3DColor diffuse(uint32_t i) const;
+  void setDiffuse(uint32_t i, D3DColor c);
+  // Components past the set's dimension read as 0 and are ignored when written.
+  Vec4 texCoord(uint32_t i, int set = 0) const;
+  void setTexCoord(uint32_t i, int set, Vec4 t);
+  void setTexCoord(uint32_t i, int set, float u, float v) { setTexCoord(i, set, Vec4(u, v, 0, 0)); }
+
+ private:
+  uint8_t* element(uint32_t i, int offset, const char* what);
+  const uint8_t* element(uint32_t i, int offset, const char* what) const;
+};
+
+// D3DXMESH::CloneMeshFVF: the same triangles with a new vertex layout. Elements
+// present in both layouts are copied (texture sets by index, the common components);
+// new elements are zero.
+Mesh cloneMeshFVF(const Mesh& mesh, uint32_t newFvf);
+
+// D3DXCreateSphere: FVF XYZ | NORMAL, axis z (pole vertex (0,0,radius) first, then
+// stacks-1 rings of `slices` vertices from +z to -z, then the -z pole).
+// slices >= 2, stacks >= 2.
+Mesh createSphere(float radius, uint32_t slices, uint32_t stacks);
+
+// Sphere for texture-mapped samples (an earth globe): axis y with the north pole at +y,
+// (stacks+1) rows of (slices+1) vertices, the u = 0 and u = 1 columns duplicated at
+// the seam. u = slice / slices grows eastward, v = stack / stacks from the north pole.
+// FVF XYZ | NORMAL | TEX2 | TEXCOORDSIZE3(1): set 0 = (u, v), set 1 = tangent
+// = normalize(dP/du). Viewed from outside with north up, east (+u) is to the right.
+// slices >= 3, stacks >= 2.
+Mesh createTexturedSphere(float radius, uint32_t slices, uint32_t stacks);
+
+// D3DXCreateBox: 24 vertices (4 per face, flat normals), 12 triangles; face order
+// -x, +y, +x, -y, +z, -z.
+Mesh createBox(float width, float height, float depth);
+
+// D3DXCreateCylinder: axis z, radius1 at z = -length/2, radius2 at z = +length/2;
+// -z cap (center + ring), stacks+1 side rings, +z cap (ring + center).
+// slices >= 2, stacks >= 1.
+Mesh createCylinder(float radius1, float radius2, float length, uint32_t slices, uint32_t stacks);
+
+// D3DXCreateTorus: axis z; the tube of radius innerRadius circles the axis at
+// distance outerRadius (as D3DX lays it out). sides >= 3 around the tube,
+// rings >= 3 around the axis.
+Mesh createTorus(float innerRadius, float outerRadius, uint32_t sides, uint32_t rings);
+
+}  // namespace refx::d3dx

@@ -1,0 +1,131 @@
+// FVF vertex layouts and element access for D3DX meshes.
+#include <algorithm>
+#include <cstring>
+
+#include "refx/core/diagnostics.h"
+#include "refx/d3dx/mesh.h"
+
+namespace refx::d3dx {
+
+namespace {
+
+// Bytes of the position part (with blend weights) per D3DFVF_POSITION_MASK value.
+int positionBytes(uint32_t fvf) {
+  uint32_t pos = fvf & fvf::POSITION_MASK;
+  switch (pos) {
+    case 0: return 0;
+    case fvf::XYZRHW:
+    case fvf::XYZW: return 16;
+    case 0x002: case 0x006: case 0x008: case 0x00a: case 0x00c: case 0x00e:
+      return 12 + 4 * int((pos - 0x002) / 2);  // XYZ, XYZB1 ... XYZB5
+    default: fail("FVF 0x{:x}: position bits 0x{:x} are not a D3DFVF position type", fvf, pos);
+  }
+}
+
+}  // namespace
+
+FVFLayout FVFLayout::of(uint32_t code) {
+  FVFLayout l;
+  int n = fvf::texCount(code);
+  if (n > 8) fail("FVF 0x{:x}: {} texture coordinate sets, D3D allows at most 8", code, n);
+  int off = positionBytes(code);
+  if (off) l.position = 0;
+  auto take = [&](uint32_t bit, int& field, int bytes) {
+    if (code & bit) field = off, off += bytes;
+  };
+  take(fvf::NORMAL, l.normal, 12);
+  take(fvf::PSIZE, l.psize, 4);
+  take(fvf::DIFFUSE, l.diffuse, 4);
+  take(fvf::SPECULAR, l.specular, 4);
+  for (int i = 0; i < n; ++i) {
+    l.texDims[i] = fvf::texCoordDims(code, i);
+    l.texCoord[i] = off;
+    off += 4 * l.texDims[i];
+  }
+  l.stride = uint32_t(off);
+  return l;
+}
+
+uint32_t fvf::stride(uint32_t code) { return FVFLayout::of(code).stride; }
+
+Mesh::Mesh(uint32_t fvf_, uint32_t vertexCount, uint32_t faceCount)
+    : fvf(fvf_), stride(fvf::stride(fvf_)) {
+  vertices.assign(size_t(vertexCount) * stride, 0);
+  indices.assign(size_t(faceCount) * 3, 0);
+}
+
+uint8_t* Mesh::element(uint32_t i, int offset, const char* what) {
+  return const_cast<uint8_t*>(static_cast<const Mesh*>(this)->element(i, offset, what));
+}
+
+const uint8_t* Mesh::element(uint32_t i, int offset, const char* what) const {
+  if (offset < 0) fail("mesh: FVF 0x{:x} has no {}", fvf, what);
+  if (i >= vertexCount()) fail("mesh: vertex {} does not exist ({} vertices)", i, vertexCount());
+  return vertices.data() + size_t(i) * stride + size_t(offset);
+}
+
+namespace {
+Vec3 load3(const uint8_t* p) {
+  float f[3];
+  std::memcpy(f, p, sizeof f);
+  return {f[0], f[1], f[2]};
+}
+void store3(uint8_t* p, Vec3 v) {
+  float f[3] = {v.x, v.y, v.z};
+  std::memcpy(p, f, sizeof f);
+}
+}  // namespace
+
+Vec3 Mesh::position(uint32_t i) const { return load3(element(i, layout().position, "position")); }
+void Mesh::setPosition(uint32_t i, Vec3 p) { store3(element(i, layout().position, "position"), p); }
+Vec3 Mesh::normal(uint32_t i) const { return load3(element(i, layout().normal, "normal")); }
+void Mesh::setNormal(uint32_t i, Vec3 n) { store3(element(i, layout().normal, "normal"), n); }
+
+D3DColor Mesh::diffuse(uint32_t i) const {
+  D3DColor c;
+  std::memcpy(&c, element(i, layout().diffuse, "diffuse color"), 4);
+  return c;
+}
+void Mesh::setDiffuse(uint32_t i, D3DColor c) {
+  std::memcpy(element(i, layout().diffuse, "diffuse color"), &c, 4);
+}
+
+Vec4 Mesh::texCoord(uint32_t i, int set) const {
+  FVFLayout l = layout();
+  if (set < 0 || set >= 8) fail("mesh: texture coordinate set {} does not exist", set);
+  float f[4] = {0, 0, 0, 0};
+  std::memcpy(f, element(i, l.texCoord[set], "such texture coordinate set"),
+              size_t(l.texDims[set]) * 4);
+  return {f[0], f[1], f[2], f[3]};
+}
+void Mesh::setTexCoord(uint32_t i, int set, Vec4 t) {
+  FVFLayout l = layout();
+  if (set < 0 || set >= 8) fail("mesh: texture coordinate set {} does not exist", set);
+  float f[4] = {t.x, t.y, t.z, t.w};
+  std::memcpy(element(i, l.texCoord[set], "such texture coordinate set"), f,
+              size_t(l.texDims[set]) * 4);
+}
+
+Mesh cloneMeshFVF(const Mesh& mesh, uint32_t newFvf) {
+  FVFLayout from = mesh.layout(), to = FVFLayout::of(newFvf);
+  uint32_t n = mesh.vertexCount();
+  Mesh out(newFvf, n, 0);
+  out.indices = mesh.indices;
+  auto copy = [&](int src, int dst, int bytes) {
+    if (src < 0 || dst < 0) return;
+    for (uint32_t i = 0; i < n; ++i)
+      std::memcpy(out.vertices.data() + size_t(i) * out.stride + dst,
+                  mesh.vertices.data() + size_t(i) * mesh.stride + src, size_t(bytes));
+  };
+  // Position: the x, y, z common to every position type (w / rhw / weights not carried).
+  copy(from.position, to.position, 12);
+  copy(from.normal, to.normal, 12);
+  copy(from.psize, to.psize, 4);
+  copy(from.diffuse, to.diffuse, 4);
+  copy(from.specular, to.specular, 4);
+  for (int s = 0; s < 8; ++s)
+    copy(from.texCoord[s], to.texCoord[s], 4 * std::min(from.texDims[s], to.texDims[s]));
+  return out;
+}
+
+}  // namespace refx::d3dx
