@@ -1,0 +1,485 @@
+// Fixed-function T&L as straight-line IR. State that is uniform for the draw
+// (matrices, lights moved into camera space, material colors, fog parameters) is
+// folded into Imm constants at build time; per-lane decisions (range, spot cone,
+// N·L > 0) become Slt/Sge masks multiplied into the terms.
+#include "pipeline/ff_vertex.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace refx::pipeline {
+
+using namespace exec;
+using namespace d3d;
+
+namespace {
+
+// Keeps rsq/rcp of zero lengths finite: a zero vector normalizes to zero.
+constexpr float kTiny = 1e-30f;
+constexpr float kHuge = 1e30f;
+constexpr float kLog2e = 1.4426950408889634f;
+// Vertex->viewer direction for a non-local viewer: toward -z in left-handed camera space.
+constexpr Vec3 kNonLocalViewer{0, 0, -1};
+
+constexpr uint8_t kMaskX = 0x1, kMaskXYZ = 0x7, kMaskW = 0x8, kMaskAll = 0xF;
+
+Vec4 splat(float v) { return {v, v, v, v}; }
+Vec4 rgb(Color4 c) { return {c.r, c.g, c.b, c.a}; }
+bool isBlack(Color4 c) { return c.r == 0 && c.g == 0 && c.b == 0; }
+
+// Column j of m: dp4(v, column) is component j of the row vector v * m.
+Vec4 column(const Matrix& m, int j) { return {m.m[0][j], m.m[1][j], m.m[2][j], m.m[3][j]}; }
+
+// Bits for components [from, 4).
+uint8_t maskFrom(int from) { return uint8_t(0xF & ~((1u << from) - 1)); }
+
+// Inverse transpose of the upper 3x3 of m, as a 4x4 with the rest zero. A singular
+// matrix (e.g. a zero scale) falls back to the matrix itself.
+Matrix normalMatrix(const Matrix& m) {
+  Matrix a = Matrix::identity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) a.m[i][j] = m.m[i][j];
+  Matrix inv;
+  Matrix r;
+  if (inverse(a, inv)) {
+    a = transpose(inv);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r.m[i][j] = a.m[i][j];
+  return r;
+}
+
+class Builder {
+ public:
+  Builder(const DeviceState& s, const FixedFunctionVertexConfig& c) : st_(s), cfg_(c) {
+    worldView_ = s.world * s.view;
+  }
+
+  Program build();
+
+ private:
+  // Register shorthands.
+  static Src t(int r, uint8_t sw = kSwzXYZW, SrcMod m = SrcMod::None) {
+    return reg(RegFile::Temp, r, sw, m);
+  }
+  static Dst td(int r, uint8_t mask = kMaskAll) { return dst(RegFile::Temp, r, mask); }
+  static Src in(int r, uint8_t sw = kSwzXYZW) { return reg(RegFile::Input, r, sw); }
+  static Dst out(int r, uint8_t mask = kMaskAll) { return dst(RegFile::Output, r, mask); }
+  Src k(Vec4 v) { return p_.imm(v); }
+  Src k(float v) { return p_.imm(splat(v)); }
+  Instr& emit(Op op, Dst d, Src a = {}, Src b = {}, Src c = {}) { return p_.emit(op, d, a, b, c); }
+
+  // New temp holding normalize(s.xyz) (w undefined); zero stays zero.
+  int normalize3(Src s) {
+    int len = p_.newTemp(), r = p_.newTemp();
+    emit(Op::Dp3, td(len, kMaskX), s, s);
+    emit(Op::Max, td(len, kMaskX), t(len, kSwzXXXX), k(kTiny));
+    emit(Op::Rsq, td(len, kMaskX), t(len, kSwzXXXX));
+    emit(Op::Mul, td(r, kMaskXYZ), s, t(len, kSwzXXXX));
+    return r;
+  }
+
+  uint32_t rs(RenderState s) const { return st_.rs(s); }
+  float rsF(RenderState s) const { return st_.rsFloat(s); }
+
+  // Lazily emitted per-vertex values (straight-line code: first use emits them).
+  int cameraPosition();  // P = position * World * View (xyz)
+  int cameraNormal();    // N (xyz, w = 0)
+  Src viewerDirection();  // V: vertex -> viewer
+  int reflectionVector();  // R = E - 2(N·E)N, E = normalize(P)
+  int sphereMapCoords();   // (u, v, 0, 0)
+
+  // Material color source per D3DMCS_*, honouring COLORVERTEX and what the vertex has.
+  Src materialSource(RenderState sourceState, Color4 materialColor);
+
+  void emitPosition();
+  void emitLighting();
+  void emitLight(const Light& light, int lightScratch);
+  void emitUnlitColors();
+  void emitFog();
+  void emitPointSize();
+  void emitTexCoords(int stage);
+
+  const DeviceState& st_;
+  const FixedFunctionVertexConfig& cfg_;
+  Matrix worldView_;
+  Program p_;
+  int pos_ = -1, normal_ = -1, reflect_ = -1, sphere_ = -1, viewer_ = -1;
+  // Lighting accumulators (rgb).
+  int ambAcc_ = -1, diffAcc_ = -1, specAcc_ = -1;
+  Src specularSource_{};
+};
+
+int Builder::cameraPosition() {
+  if (pos_ < 0) {
+    pos_ = p_.newTemp();
+    for (int j = 0; j < 3; ++j)
+      emit(Op::Dp4, td(pos_, uint8_t(1 << j)), in(kVertexInPosition), k(column(worldView_, j)));
+    emit(Op::Mov, td(pos_, kMaskW), k(1.0f));
+  }
+  return pos_;
+}
+
+int Builder::cameraNormal() {
+  if (normal_ >= 0) return normal_;
+  int n = p_.newTemp();
+  if (cfg_.hasNormal) {
+    // Row vector times the inverse transpose: component j = dp3(n, column j).
+    Matrix nm = normalMatrix(worldView_);
+    for (int j = 0; j < 3; ++j)
+      emit(Op::Dp3, td(n, uint8_t(1 << j)), in(kVertexInNormal), k(column(nm, j)));
+    emit(Op::Mov, td(n, kMaskW), k(0.0f));
+    if (rs(RS_NORMALIZENORMALS)) {
+      int u = normalize3(t(n));
+      emit(Op::Mov, td(u, kMaskW), k(0.0f));
+      n = u;
+    }
+  } else {
+    emit(Op::Mov, td(n), k(0.0f));
+  }
+  normal_ = n;
+  return normal_;
+}
+
+Src Builder::viewerDirection() {
+  if (!rs(RS_LOCALVIEWER)) return k(Vec4(kNonLocalViewer, 0));
+  if (viewer_ < 0) viewer_ = normalize3(t(cameraPosition(), kSwzXYZW, SrcMod::Neg));
+  return t(viewer_);
+}
+
+int Builder::reflectionVector() {
+  if (reflect_ >= 0) return reflect_;
+  int n = cameraNormal();
+  int e = normalize3(t(cameraPosition()));
+  int s = p_.newTemp();
+  emit(Op::Dp3, td(s, kMaskX), t(n), t(e));
+  emit(Op::Add, td(s, kMaskX), t(s, kSwzXXXX), t(s, kSwzXXXX));  // 2(N·E)
+  reflect_ = p_.newTemp();
+  emit(Op::Mad, td(reflect_, kMaskXYZ), t(n), t(s, kSwzXXXX, SrcMod::Neg), t(e));
+  emit(Op::Mov, td(reflect_, kMaskW), k(0.0f));
+  return reflect_;
+}
+
+int Builder::sphereMapCoords() {
+  if (sphere_ >= 0) return sphere_;
+  // m = 2*sqrt(Rx² + Ry² + (Rz+1)²); (u, v) = R.xy / m + 0.5
+  int r = reflectionVector();
+  int q = p_.newTemp();
+  emit(Op::Add, td(q, kMaskXYZ), t(r), k(Vec4(0, 0, 1, 0)));
+  emit(Op::Dp3, td(q, kMaskW), t(q), t(q));
+  emit(Op::Max, td(q, kMaskW), t(q, kSwzWWWW), k(kTiny));
+  emit(Op::Rsq, td(q, kMaskW), t(q, kSwzWWWW));
+  emit(Op::Mul, td(q, kMaskW), t(q, kSwzWWWW), k(0.5f));
+  sphere_ = p_.newTemp();
+  emit(Op::Mad, td(sphere_, 0x3), t(r), t(q, kSwzWWWW), k(0.5f));
+  emit(Op::Mov, td(sphere_, 0xC), k(0.0f));
+  return sphere_;
+}
+
+Src Builder::materialSource(RenderState sourceState, Color4 materialColor) {
+  if (rs(RS_COLORVERTEX)) {
+    uint32_t src = rs(sourceState);
+    if (src == MCS_COLOR1 && cfg_.hasDiffuse) return in(kVertexInDiffuse);
+    if (src == MCS_COLOR2 && cfg_.hasSpecular) return in(kVertexInSpecular);
+  }
+  return k(rgb(materialColor));
+}
+
+void Builder::emitPosition() {
+  if (cfg_.pretransformed) {
+    emit(Op::Mov, out(kVertexOutPosition), in(kVertexInPosition));
+    return;
+  }
+  Matrix wvp = worldView_ * st_.projection;
+  for (int j = 0; j < 4; ++j)
+    emit(Op::Dp4, out(kVertexOutPosition, uint8_t(1 << j)), in(kVertexInPosition),
+         k(column(wvp, j)));
+}
+
+void Builder::emitUnlitColors() {
+  emit(Op::Mov, out(kVertexOutDiffuse), in(kVertexInDiffuse)).saturate = true;
+  emit(Op::Mov, out(kVertexOutSpecular), in(kVertexInSpecular)).saturate = true;
+  specularSource_ = in(kVertexInSpecular);
+}
+
+// One enabled light, accumulated into ambAcc_/diffAcc_/specAcc_. `sc` is a scratch
+// temp base (4 temps) reused by every light.
+void Builder::emitLight(const Light& light, int sc) {
+  const Matrix& view = st_.view;
+  const bool specular = rs(RS_SPECULARENABLE) && !isBlack(light.specular);
+  const int n = cameraNormal();
+  const int ldir = sc, s = sc + 1, a = sc + 2, h = sc + 3;
+  // s.x = N·L, s.y = max(N·L, 0) * factor, s.z = specular term, s.w = scratch
+  // a.x = factor (atten * range * spot) for local lights
+  Src ldirSrc;
+  bool local = light.type != LIGHT_DIRECTIONAL;
+
+  if (!local) {
+    Vec3 d = normalize(-transformNormal(light.direction, view));
+    ldirSrc = k(Vec4(d, 0));
+  } else {
+    Vec3 lp = transformCoord(light.position, view);
+    int pos = cameraPosition();
+    emit(Op::Sub, td(ldir, kMaskXYZ), k(Vec4(lp, 0)), t(pos));
+    emit(Op::Dp3, td(s, kMaskW), t(ldir), t(ldir));                   // d²
+    emit(Op::Max, td(s, kMaskW), t(s, kSwzWWWW), k(kTiny));
+    emit(Op::Rsq, td(s, kMaskX), t(s, kSwzWWWW));                     // 1/d
+    emit(Op::Mul, td(ldir, kMaskXYZ), t(ldir), t(s, kSwzXXXX));      // Ldir
+    emit(Op::Mul, td(s, kMaskX), t(s, kSwzWWWW), t(s, kSwzXXXX));    // d
+    // atten = 1 / (a0 + a1 d + a2 d²)
+    emit(Op::Mad, td(a, kMaskX), t(s, kSwzXXXX), k(light.attenuation1), k(light.attenuation0));
+    emit(Op::Mad, td(a, kMaskX), t(s, kSwzWWWW), k(light.attenuation2), t(a, kSwzXXXX));
+    emit(Op::Max, td(a, kMaskX), t(a, kSwzXXXX), k(kTiny));
+    emit(Op::Rcp, td(a, kMaskX), t(a, kSwzXXXX));
+    // Beyond Range the light contributes nothing: factor *= (Range >= d).
+    emit(Op::Sge, td(a, 0x2), k(light.range), t(s, kSwzXXXX));
+    emit(Op::Mul, td(a, kMaskX), t(a, kSwzXXXX), t(a, kSwzYYYY));
+    if (light.type == LIGHT_SPOT) {
+      // spot = rho > cos(Phi/2) ? saturate((rho - cosPhi)/(cosTheta - cosPhi))^Falloff : 0
+      Vec3 sd = normalize(-transformNormal(light.direction, view));
+      float cosTheta = std::cos(light.theta * 0.5f), cosPhi = std::cos(light.phi * 0.5f);
+      float band = cosTheta - cosPhi;
+      float scale = band > 0 ? 1.0f / band : kHuge;  // no band: a hard edge at Phi
+      emit(Op::Dp3, td(a, 0x2), k(Vec4(sd, 0)), t(ldir));                       // rho
+      emit(Op::Slt, td(a, 0x4), k(cosPhi), t(a, kSwzYYYY));                      // rho > cosPhi
+      emit(Op::Mad, td(a, 0x2), t(a, kSwzYYYY), k(scale), k(-cosPhi * scale)).saturate = true;
+      if (light.falloff != 1.0f)
+        emit(Op::Pow, td(a, 0x2), t(a, kSwzYYYY), k(light.falloff));
+      emit(Op::Mul, td(a, kMaskX), t(a, kSwzXXXX), t(a, kSwzYYYY));
+      emit(Op::Mul, td(a, kMaskX), t(a, kSwzXXXX), t(a, kSwzZZZZ));
+    }
+    if (!isBlack(light.ambient))
+      emit(Op::Mad, td(ambAcc_, kMaskXYZ), t(a, kSwzXXXX), k(rgb(light.ambient)), t(ambAcc_));
+    ldirSrc = t(ldir);
+  }
+
+  emit(Op::Dp3, td(s, kMaskX), t(n), ldirSrc);
+  emit(Op::Max, td(s, 0x2), t(s, kSwzXXXX), k(0.0f));
+  if (local) emit(Op::Mul, td(s, 0x2), t(s, kSwzYYYY), t(a, kSwzXXXX));
+  if (!isBlack(light.diffuse))
+    emit(Op::Mad, td(diffAcc_, kMaskXYZ), t(s, kSwzYYYY), k(rgb(light.diffuse)), t(diffAcc_));
+
+  if (specular) {
+    // H = normalize(V + Ldir); term = max(N·H, 0)^Power, only where N·L > 0.
+    Src hSrc;
+    if (!local && !rs(RS_LOCALVIEWER)) {
+      Vec3 l = normalize(-transformNormal(light.direction, view));
+      hSrc = k(Vec4(normalize(l + kNonLocalViewer), 0));
+    } else {
+      emit(Op::Add, td(h, kMaskXYZ), viewerDirection(), ldirSrc);
+      emit(Op::Dp3, td(s, kMaskW), t(h), t(h));
+      emit(Op::Max, td(s, kMaskW), t(s, kSwzWWWW), k(kTiny));
+      emit(Op::Rsq, td(s, kMaskW), t(s, kSwzWWWW));
+      emit(Op::Mul, td(h, kMaskXYZ), t(h), t(s, kSwzWWWW));
+      hSrc = t(h);
+    }
+    emit(Op::Dp3, td(s, 0x4), t(n), hSrc);
+    emit(Op::Max, td(s, 0x4), t(s, kSwzZZZZ), k(0.0f));
+    emit(Op::Pow, td(s, 0x4), t(s, kSwzZZZZ), k(st_.material.power));
+    emit(Op::Slt, td(s, kMaskW), k(0.0f), t(s, kSwzXXXX));
+    emit(Op::Mul, td(s, 0x4), t(s, kSwzZZZZ), t(s, kSwzWWWW));
+    if (local) emit(Op::Mul, td(s, 0x4), t(s, kSwzZZZZ), t(a, kSwzXXXX));
+    emit(Op::Mad, td(specAcc_, kMaskXYZ), t(s, kSwzZZZZ), k(rgb(light.specular)), t(specAcc_));
+  }
+}
+
+void Builder::emitLighting() {
+  const Material& m = st_.material;
+  Src diffuseM = materialSource(RS_DIFFUSEMATERIALSOURCE, m.diffuse);
+  Src ambientM = materialSource(RS_AMBIENTMATERIALSOURCE, m.ambient);
+  Src specularM = materialSource(RS_SPECULARMATERIALSOURCE, m.specular);
+  Src emissiveM = materialSource(RS_EMISSIVEMATERIALSOURCE, m.emissive);
+  specularSource_ = specularM;
+
+  // Global ambient plus the ambient of directional lights (atten = spot = 1) is uniform.
+  Color4 ga = colorFromD3D(rs(RS_AMBIENT));
+  bool anyLight = false;
+  for (int i = 0; i < 8; ++i) {
+    if (!st_.lightEnabled[i]) continue;
+    const Light& l = st_.lights[i];
+    if (l.type != LIGHT_POINT && l.type != LIGHT_SPOT && l.type != LIGHT_DIRECTIONAL) continue;
+    anyLight = true;
+    if (l.type == LIGHT_DIRECTIONAL) {
+      ga.r += l.ambient.r;
+      ga.g += l.ambient.g;
+      ga.b += l.ambient.b;
+    }
+  }
+  ambAcc_ = p_.newTemp();
+  emit(Op::Mov, td(ambAcc_), k(Vec4(ga.r, ga.g, ga.b, 0)));
+  diffAcc_ = p_.newTemp();
+  emit(Op::Mov, td(diffAcc_), k(0.0f));
+  const bool specular = rs(RS_SPECULARENABLE) != 0;
+  if (specular) {
+    specAcc_ = p_.newTemp();
+    emit(Op::Mov, td(specAcc_), k(0.0f));
+  }
+  if (anyLight) {
+    int scratch = p_.newTemp();
+    for (int i = 1; i < 4; ++i) p_.newTemp();
+    for (int i = 0; i < 8; ++i) {
+      if (!st_.lightEnabled[i]) continue;
+      const Light& l = st_.lights[i];
+      if (l.type != LIGHT_POINT && l.type != LIGHT_SPOT && l.type != LIGHT_DIRECTIONAL) continue;
+      emitLight(l, scratch);
+    }
+  }
+
+  // diffuse.rgb = Emissive + Ambient*(Ga + Σambient) + Diffuse*Σdiffuse; .a = Diffuse.a
+  int c = p_.newTemp();
+  emit(Op::Mad, td(c, kMaskXYZ), ambientM, t(ambAcc_), emissiveM);
+  emit(Op::Mad, out(kVertexOutDiffuse, kMaskXYZ), diffuseM, t(diffAcc_), t(c)).saturate = true;
+  emit(Op::Mov, out(kVertexOutDiffuse, kMaskW), diffuseM).saturate = true;
+  // specular.rgb = Specular * Σspecular (only computed with SPECULARENABLE)
+  if (specular)
+    emit(Op::Mul, out(kVertexOutSpecular, kMaskXYZ), specularM, t(specAcc_)).saturate = true;
+  else
+    emit(Op::Mov, out(kVertexOutSpecular, kMaskXYZ), k(0.0f));
+  emit(Op::Mov, out(kVertexOutSpecular, kMaskW), specularM).saturate = true;
+}
+
+// Vertex fog replaces specular alpha with f; otherwise f is the specular alpha.
+void Builder::emitFog() {
+  const uint32_t mode = rs(RS_FOGVERTEXMODE);
+  const bool vertexFog = !cfg_.pretransformed && rs(RS_FOGENABLE) && rs(RS_FOGTABLEMODE) == FOG_NONE &&
+                         (mode == FOG_LINEAR || mode == FOG_EXP || mode == FOG_EXP2);
+  if (!vertexFog) {
+    Src alpha = specularSource_;
+    alpha.swizzle = kSwzWWWW;
+    emit(Op::Mov, out(kVertexOutFog), alpha).saturate = true;
+    return;
+  }
+  // d = camera-space |z|, or |P| with RANGEFOGENABLE.
+  int pos = cameraPosition();
+  int f = p_.newTemp();
+  Src d;
+  if (rs(RS_RANGEFOGENABLE)) {
+    emit(Op::Dp3, td(f, kMaskW), t(pos), t(pos));
+    emit(Op::Max, td(f, kMaskW), t(f, kSwzWWWW), k(kTiny));
+    emit(Op::Rsq, td(f, kMaskX), t(f, kSwzWWWW));
+    emit(Op::Mul, td(f, kMaskW), t(f, kSwzWWWW), t(f, kSwzXXXX));
+    d = t(f, kSwzWWWW);
+  } else {
+    d = t(pos, kSwzZZZZ, SrcMod::Abs);
+  }
+  const float start = rsF(RS_FOGSTART), end = rsF(RS_FOGEND), density = rsF(RS_FOGDENSITY);
+  if (mode == FOG_LINEAR) {
+    // f = (end - d) / (end - start)
+    float range = end - start;
+    float scale = range != 0 ? 1.0f / range : kHuge;
+    emit(Op::Mad, td(f, kMaskX), d, k(-scale), k(end * scale)).saturate = true;
+  } else if (mode == FOG_EXP) {
+    // f = e^-(d*density) = 2^(-d*density*log2 e)
+    emit(Op::Mul, td(f, kMaskX), d, k(-density * kLog2e));
+    emit(Op::Exp2, td(f, kMaskX), t(f, kSwzXXXX)).saturate = true;
+  } else {
+    // f = e^-((d*density)²)
+    emit(Op::Mul, td(f, kMaskX), d, k(density));
+    emit(Op::Mul, td(f, kMaskX), t(f, kSwzXXXX), t(f, kSwzXXXX));
+    emit(Op::Mul, td(f, kMaskX), t(f, kSwzXXXX), k(-kLog2e));
+    emit(Op::Exp2, td(f, kMaskX), t(f, kSwzXXXX)).saturate = true;
+  }
+  emit(Op::Mov, out(kVertexOutSpecular, kMaskW), t(f, kSwzXXXX));
+  emit(Op::Mov, out(kVertexOutFog), t(f, kSwzXXXX));
+}
+
+// Point size: vertex PSIZE or D3DRS_POINTSIZE; POINTSCALEENABLE scales by
+// Vh * sqrt(1 / (A + B*De + C*De²)), De = eye distance; clamped to [MIN, MAX].
+void Builder::emitPointSize() {
+  Src size = cfg_.hasPSize ? in(kVertexInPSize, kSwzXXXX) : k(rsF(RS_POINTSIZE));
+  int r = p_.newTemp();
+  emit(Op::Mov, td(r, kMaskX), size);
+  if (!cfg_.pretransformed && rs(RS_POINTSCALEENABLE)) {
+    int pos = cameraPosition();
+    int q = p_.newTemp();
+    emit(Op::Dp3, td(q, kMaskW), t(pos), t(pos));                     // De²
+    emit(Op::Max, td(q, kMaskW), t(q, kSwzWWWW), k(kTiny));
+    emit(Op::Rsq, td(q, kMaskX), t(q, kSwzWWWW));
+    emit(Op::Mul, td(q, kMaskX), t(q, kSwzWWWW), t(q, kSwzXXXX));    // De
+    emit(Op::Mad, td(q, kMaskX), t(q, kSwzXXXX), k(rsF(RS_POINTSCALE_B)), k(rsF(RS_POINTSCALE_A)));
+    emit(Op::Mad, td(q, kMaskX), t(q, kSwzWWWW), k(rsF(RS_POINTSCALE_C)), t(q, kSwzXXXX));
+    emit(Op::Max, td(q, kMaskX), t(q, kSwzXXXX), k(kTiny));
+    emit(Op::Rsq, td(q, kMaskX), t(q, kSwzXXXX));
+    emit(Op::Mul, td(r, kMaskX), t(r, kSwzXXXX), t(q, kSwzXXXX));
+    emit(Op::Mul, td(r, kMaskX), t(r, kSwzXXXX), k(float(st_.viewport.height)));
+  }
+  emit(Op::Max, td(r, kMaskX), t(r, kSwzXXXX), k(rsF(RS_POINTSIZE_MIN)));
+  emit(Op::Min, out(kVertexOutPSize), t(r, kSwzXXXX), k(rsF(RS_POINTSIZE_MAX)));
+}
+
+void Builder::emitTexCoords(int stage) {
+  const uint32_t tci = st_.tss(stage, TSS_TEXCOORDINDEX);
+  const uint32_t index = tci & 0xFFFF;
+  const uint32_t gen = cfg_.pretransformed ? TCI_PASSTHRU : (tci & 0xFFFF0000u);
+  const Dst o = out(kVertexOutTex0 + stage);
+
+  // Source coordinates and how many components they have.
+  Src src = k(0.0f);
+  int dims = 0;
+  switch (gen) {
+    case TCI_CAMERASPACENORMAL: src = t(cameraNormal()); dims = 3; break;
+    case TCI_CAMERASPACEPOSITION: src = t(cameraPosition()); dims = 3; break;
+    case TCI_CAMERASPACEREFLECTIONVECTOR: src = t(reflectionVector()); dims = 3; break;
+    case TCI_SPHEREMAP: src = t(sphereMapCoords()); dims = 2; break;
+    default:
+      if (index < 8 && cfg_.texCoordDims[index] > 0) {
+        src = in(kVertexInTex0 + int(index));
+        dims = std::min(cfg_.texCoordDims[index], 4);
+      }
+      break;
+  }
+
+  const uint32_t flags = st_.tss(stage, TSS_TEXTURETRANSFORMFLAGS);
+  const int count = std::min<int>(flags & 0xFF, 4);
+  const bool projected = (flags & TTFF_PROJECTED) != 0;
+  if (count == 0) {
+    // No transform: the coordinates as they are, unused components 0.
+    if (dims > 0) emit(Op::Mov, dst(o.file, o.index, uint8_t((1u << dims) - 1)), src);
+    if (dims < 4) emit(Op::Mov, dst(o.file, o.index, maskFrom(dims)), k(0.0f));
+    return;
+  }
+
+  // Expand the input: the first missing component is 1, the others 0 (absent set: all 0).
+  int x = p_.newTemp();
+  if (dims > 0) emit(Op::Mov, td(x, uint8_t((1u << dims) - 1)), src);
+  if (dims < 4) {
+    Vec4 fill(0, 0, 0, 0);
+    if (dims > 0) fill[dims] = 1;
+    emit(Op::Mov, td(x, maskFrom(dims)), k(fill));
+  }
+  // Pretransformed vertices are not transformed; COUNTn / PROJECTED still apply.
+  const Matrix m = cfg_.pretransformed ? Matrix::identity() : st_.textureTransforms[stage];
+  for (int j = 0; j < count; ++j)
+    emit(Op::Dp4, dst(o.file, o.index, uint8_t(1 << j)), t(x), k(column(m, j)));
+  uint8_t rest = maskFrom(count);
+  if (projected && count < 4) {
+    // The divisor (last kept component) goes to .w for a projected sample.
+    emit(Op::Dp4, dst(o.file, o.index, kMaskW), t(x), k(column(m, count - 1)));
+    rest &= uint8_t(~kMaskW);
+  }
+  if (rest) emit(Op::Mov, dst(o.file, o.index, rest), k(0.0f));
+}
+
+Program Builder::build() {
+  p_.name = cfg_.pretransformed ? "ff_vertex_pretransformed" : "ff_vertex";
+  p_.inputCount = kVertexInputCount;
+  p_.outputCount = kVertexOutputCount;
+  emitPosition();
+  if (cfg_.pretransformed || !rs(RS_LIGHTING))
+    emitUnlitColors();
+  else
+    emitLighting();
+  emitFog();
+  emitPointSize();
+  for (int stage = 0; stage < kMaxTextureStages; ++stage) emitTexCoords(stage);
+  return std::move(p_);
+}
+
+}  // namespace
+
+exec::Program buildFixedFunctionVertexProgram(const DeviceState& state,
+                                              const FixedFunctionVertexConfig& cfg) {
+  return Builder(state, cfg).build();
+}
+
+}  // namespace refx::pipeline

@@ -1,0 +1,49 @@
+// Fixed-function vertex processing (transform, D3D lighting, vertex fog, texture
+// coordinate generation and texture transforms) expressed as an exec::Program, so
+// fixed-function draws run on the same engine as vertex shaders.
+#pragma once
+#include <array>
+
+#include "refx/exec/ir.h"
+#include "refx/pipeline/state.h"
+
+namespace refx::pipeline {
+
+// Vertex input registers: the DirectX 8 D3DVSDE_* numbering, also used for vs_1_1
+// declarations.
+enum VertexInput : int {
+  kVertexInPosition = 0,
+  kVertexInBlendWeight = 1,
+  kVertexInBlendIndices = 2,
+  kVertexInNormal = 3,
+  kVertexInPSize = 4,
+  kVertexInDiffuse = 5,
+  kVertexInSpecular = 6,
+  kVertexInTex0 = 7,  // ..14: texture coordinate sets 0..7
+  kVertexInputCount = 17,
+};
+
+// Vertex outputs as a vertex shader writes them.
+enum VertexOutput : int {
+  kVertexOutPosition = 0,  // clip space (x,y,z,w); pretransformed: (sx, sy, sz, rhw) passed through
+  kVertexOutDiffuse = 1,
+  kVertexOutSpecular = 2,
+  kVertexOutTex0 = 3,  // ..10: coordinates for texture stage 0..7
+  kVertexOutFog = 11,  // .x (replicated)
+  kVertexOutPSize = 12,  // .x (replicated)
+  kVertexOutputCount = 13,
+};
+
+// What the vertex declaration supplies. Absent inputs are filled by the fetcher:
+// diffuse (1,1,1,1), specular (0,0,0,0), position w = 1, missing texcoord components 0.
+struct FixedFunctionVertexConfig {
+  bool pretransformed = false;  // XYZRHW / POSITIONT
+  bool hasNormal = false, hasDiffuse = false, hasSpecular = false;
+  bool hasPSize = false;
+  std::array<int, 8> texCoordDims{};  // components present in each input texcoord set (0 = absent)
+};
+
+exec::Program buildFixedFunctionVertexProgram(const DeviceState& state,
+                                              const FixedFunctionVertexConfig& cfg);
+
+}  // namespace refx::pipeline
