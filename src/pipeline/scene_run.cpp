@@ -1,0 +1,167 @@
+// Runs a parsed scene script against a Device, command by command.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "refx/core/diagnostics.h"
+#include "refx/pipeline/device.h"
+#include "refx/pipeline/scene_script.h"
+#include "refx/resource/image_io.h"
+
+namespace refx {
+
+using namespace scene;
+
+namespace {
+
+class Runner {
+ public:
+  Runner(const SceneScript& script, Device& device) : script_(script), device_(device) {
+    base_ = std::filesystem::path(script.file).parent_path();
+  }
+
+  SceneOutput run() {
+    SceneOutput out;
+    // A new target holds 0x00000000 until the first clear.
+    out.target = Texture::create2D(script_.targetFormat, script_.width, script_.height, 1);
+    out.depthStencil = std::make_shared<DepthStencilSurface>(script_.width, script_.height);
+    device_.setRenderTarget(out.target);
+    device_.setDepthStencilSurface(out.depthStencil);
+    for (const Command& c : script_.commands) {
+      current_ = &c;
+      try {
+        std::visit([this](const auto& a) { apply(a); }, c.action);
+      } catch (const Error& e) {
+        std::string msg = e.what();
+        std::string here = where().str() + ":";
+        if (msg.starts_with(here)) throw;  // already located by this runner
+        if (msg.starts_with("error: ")) msg.erase(0, 7);
+        std::string prefix = c.name + ": ";
+        if (msg.starts_with(prefix)) msg.erase(0, prefix.size());
+        throw Error(where(), c.name + ": " + msg);
+      }
+    }
+    return out;
+  }
+
+ private:
+  SourceLocation where() const { return SourceLocation{script_.file, current_->line, 0}; }
+
+  [[noreturn]] void error(const std::string& msg) const {
+    throw Error(where(), current_->name + ": " + msg);
+  }
+
+  std::string resolve(const std::string& path) const {
+    std::filesystem::path p(path);
+    if (p.is_relative()) p = base_ / p;
+    return p.string();
+  }
+
+  void apply(const Clear& c) {
+    device_.clear(d3d::CLEAR_TARGET | d3d::CLEAR_ZBUFFER | d3d::CLEAR_STENCIL, c.color, c.z,
+                  c.stencil);
+  }
+  void apply(const SetRenderState& s) { device_.setRenderState(s.state, s.value); }
+  void apply(const SetStageState& s) { device_.setTextureStageState(s.stage, s.state, s.value); }
+  void apply(const SetSamplerState& s) { device_.setSamplerState(s.sampler, s.state, s.value); }
+
+  void apply(const TextureDef& t) {
+    // CreateTexture fails for sizes beyond the device's caps.
+    const CapsProfile& caps = device_.caps();
+    if (uint32_t(t.width) > caps.maxTextureWidth || uint32_t(t.height) > caps.maxTextureHeight)
+      error(fmt::format("{}x{} exceeds MaxTextureWidth/Height {}x{} of caps profile {}", t.width,
+                        t.height, caps.maxTextureWidth, caps.maxTextureHeight, caps.name));
+    if (t.type == TextureType::Volume &&
+        (uint32_t(t.width) > caps.maxVolumeExtent || uint32_t(t.height) > caps.maxVolumeExtent ||
+         uint32_t(t.depth) > caps.maxVolumeExtent))
+      error(fmt::format("{}x{}x{} exceeds MaxVolumeExtent {} of caps profile {}", t.width,
+                        t.height, t.depth, caps.maxVolumeExtent, caps.name));
+    TexturePtr image;
+    if (t.generator == Generator::File) image = loadTexture(resolve(t.path));
+    textures_[t.name] = createSceneTexture(t, image.get());
+  }
+
+  void apply(const SetTexture& s) {
+    if (s.name.empty()) {
+      device_.setTexture(s.sampler, nullptr);
+      return;
+    }
+    auto it = textures_.find(s.name);
+    if (it == textures_.end()) error(fmt::format("unknown texture '{}'", s.name));
+    device_.setTexture(s.sampler, it->second);
+  }
+
+  void apply(const Shader& s) {
+    if (s.source == Shader::Source::None) {
+      (s.pixel ? device_.mutableState().pixelShader : device_.mutableState().vertexShader) =
+          nullptr;
+      return;
+    }
+    if (s.source == Shader::Source::File) {
+      std::string path = resolve(s.path);
+      std::ifstream in(path, std::ios::binary);
+      if (!in) error(fmt::format("cannot open shader file {}", path));
+    }
+    error("shader assembly is not supported yet");
+  }
+
+  void apply(const SetConstants& c) {
+    DeviceState& st = device_.mutableState();
+    switch (c.type) {
+      case SetConstants::Type::Float: {
+        auto& regs = c.pixel ? st.psConstF : st.vsConstF;
+        for (size_t k = 0; k + 3 < c.floats.size(); k += 4)
+          regs.at(size_t(c.reg) + k / 4) =
+              Vec4(c.floats[k], c.floats[k + 1], c.floats[k + 2], c.floats[k + 3]);
+        break;
+      }
+      case SetConstants::Type::Int: {
+        auto& regs = c.pixel ? st.psConstI : st.vsConstI;
+        for (size_t k = 0; k + 3 < c.ints.size(); k += 4)
+          regs.at(size_t(c.reg) + k / 4) = {c.ints[k], c.ints[k + 1], c.ints[k + 2], c.ints[k + 3]};
+        break;
+      }
+      case SetConstants::Type::Bool: {
+        auto& regs = c.pixel ? st.psConstB : st.vsConstB;
+        for (size_t k = 0; k < c.ints.size(); ++k) regs.at(size_t(c.reg) + k) = c.ints[k] != 0;
+        break;
+      }
+    }
+  }
+
+  void apply(const Draw& d) {
+    device_.setFVF(d.fvf);
+    if (d.indices.empty()) {
+      device_.drawPrimitiveUP(d.type, d.primitiveCount, d.vertices.data(), d.stride);
+      return;
+    }
+    uint16_t lo = 0xffff, hi = 0;
+    for (uint16_t i : d.indices) lo = std::min(lo, i), hi = std::max(hi, i);
+    device_.drawIndexedPrimitiveUP(d.type, lo, uint32_t(hi - lo) + 1, d.primitiveCount,
+                                   d.indices.data(), false, d.vertices.data(), d.stride);
+  }
+
+  void apply(const SetTransform& t) { device_.setTransform(t.type, t.matrix); }
+  void apply(const SetMaterial& m) { device_.setMaterial(m.material); }
+  void apply(const SetLight& l) {
+    if (l.enable) device_.setLight(l.index, l.light);
+    device_.lightEnable(l.index, l.enable);
+  }
+  void apply(const SetViewport& v) { device_.setViewport(v.viewport); }
+  void apply(const SetScissor& s) { device_.setScissorRect(s.rect); }
+
+  const SceneScript& script_;
+  Device& device_;
+  std::filesystem::path base_;
+  const Command* current_ = nullptr;
+  std::map<std::string, TexturePtr> textures_;
+};
+
+}  // namespace
+
+SceneOutput runSceneScript(const SceneScript& script, Device& device) {
+  return Runner(script, device).run();
+}
+
+}  // namespace refx
