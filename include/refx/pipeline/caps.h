@@ -30,6 +30,9 @@ struct CapsProfile {
   uint32_t maxStreams = 16;
   uint32_t fvfCaps = 8;             // low 16 bits: max texture coordinate sets
   uint32_t maxSimultaneousRenderTargets = 1;
+  uint32_t vertexTextureFilterCaps = 0;  // D3DPTFILTERCAPS_*; nonzero = vertex texture fetch
+  uint32_t maxTextureRepeat = 8192;      // texture coordinate range (ps_1_x texcoord clamp)
+  uint32_t maxAnisotropy = 1;
 
   int vsMajor() const { return (vertexShaderVersion >> 8) & 0xff; }
   int vsMinor() const { return vertexShaderVersion & 0xff; }
