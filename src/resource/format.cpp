@@ -344,18 +344,18 @@ void encodeRow(Format f, const Color4* src, int count, uint8_t* out) {
     case Format::X8R8G8B8: {
       bool x = f == Format::X8R8G8B8;
       for (int i = 0; i < count; ++i, out += 4) {
-        out[0] = unorm8(src[i].b);
-        out[1] = unorm8(src[i].g);
-        out[2] = unorm8(src[i].r);
-        out[3] = x ? 0xff : unorm8(src[i].a);
+        out[0] = unorm8Safe(src[i].b);
+        out[1] = unorm8Safe(src[i].g);
+        out[2] = unorm8Safe(src[i].r);
+        out[3] = x ? 0xff : unorm8Safe(src[i].a);
       }
       return;
     }
     case Format::L8:
-      for (int i = 0; i < count; ++i) out[i] = unorm8(src[i].r);
+      for (int i = 0; i < count; ++i) out[i] = unorm8Safe(src[i].r);
       return;
     case Format::A8:
-      for (int i = 0; i < count; ++i) out[i] = unorm8(src[i].a);
+      for (int i = 0; i < count; ++i) out[i] = unorm8Safe(src[i].a);
       return;
     case Format::A32B32G32R32F:
       std::memcpy(out, src, size_t(count) * 16);

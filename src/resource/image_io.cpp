@@ -81,10 +81,10 @@ std::vector<uint8_t> toRGBA8(const Texture& tex, int face, int level) {
       }
       uint8_t* o = &out[(size_t(z) * h + y) * w * 4];
       for (int x = 0; x < w; ++x) {
-        o[4 * x + 0] = unorm8(row[x].r);
-        o[4 * x + 1] = unorm8(row[x].g);
-        o[4 * x + 2] = unorm8(row[x].b);
-        o[4 * x + 3] = unorm8(row[x].a);
+        o[4 * x + 0] = unorm8Safe(row[x].r);
+        o[4 * x + 1] = unorm8Safe(row[x].g);
+        o[4 * x + 2] = unorm8Safe(row[x].b);
+        o[4 * x + 3] = unorm8Safe(row[x].a);
       }
     }
   return out;

@@ -215,8 +215,8 @@ const SampleLevel& Texture::sampleLevel(int face, int level) const {
     dst = s->rgbaf.data();
   }
   auto pack = [](const Color4& c) {
-    return uint32_t(unorm8(c.r)) | (uint32_t(unorm8(c.g)) << 8) | (uint32_t(unorm8(c.b)) << 16) |
-           (uint32_t(unorm8(c.a)) << 24);
+    return uint32_t(unorm8Safe(c.r)) | (uint32_t(unorm8Safe(c.g)) << 8) | (uint32_t(unorm8Safe(c.b)) << 16) |
+           (uint32_t(unorm8Safe(c.a)) << 24);
   };
   if (info->compressed) {
     size_t pitch = rowPitch(level);

@@ -6,6 +6,7 @@
 #include <zlib.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -214,6 +215,17 @@ TEST_F(ImageIO, PngHugeDimensionsRejected) {
   uint32_t crc = uint32_t(crc32(0, b.data() + 12, 17));
   for (int i = 0; i < 4; ++i) b[29 + i] = uint8_t(crc >> (24 - 8 * i));
   expectLoadError(b, "huge.png", "16384x16384");
+}
+
+TEST_F(ImageIO, PngFromFloatTextureClampsAndMapsNaN) {
+  auto t = Texture::create2D(Format::A32B32G32R32F, 2, 1);
+  t->setTexel(0, 0, 0, 0, 0, {2.0f, -1.0f, 0.5f, 1});
+  t->setTexel(0, 0, 1, 0, 0, {std::nanf(""), 0, 0, 1});
+  savePNG(*t, path("f.png"));
+  auto back = loadTexture(path("f.png"));
+  // (2, -1, 0.5) clamps to (1, 0, 0.5): 255, 0, 128.
+  EXPECT_EQ(argbAt(*back, 0, 0), 0xffff0080u);
+  EXPECT_EQ(argbAt(*back, 1, 0), 0xff000000u);  // NaN -> 0
 }
 
 // ---- DDS --------------------------------------------------------------------------

@@ -1,6 +1,11 @@
 // Texture storage, mip dimensions, box-filtered mips and the decoded sampling levels.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <thread>
+#include <vector>
+
 #include "refx/core/diagnostics.h"
 #include "refx/resource/texture.h"
 
@@ -95,4 +100,79 @@ TEST(Texture, BadArguments) {
   EXPECT_THROW(Texture::create2D(Format::A8R8G8B8, 4, 4, 4), Error);  // chain is 3 levels
   EXPECT_THROW(Texture(TextureType::Cube, Format::A8R8G8B8, 4, 8, 1, 1), Error);
   EXPECT_THROW(Texture::create2D(Format::Unknown, 4, 4), Error);
+}
+
+TEST(Texture, GenerateMipsVolumeAndOddSizes) {
+  auto v = Texture::createVolume(Format::L8, 2, 2, 2, 0);
+  ASSERT_EQ(v->levelCount(), 2);
+  // Eight texels 0, 1/7, ..., 7/7 stored as round(i/7*255): box average of all eight.
+  float sum = 0;
+  for (int i = 0; i < 8; ++i) {
+    v->setTexel(0, 0, i & 1, (i >> 1) & 1, i >> 2, {i / 7.0f, 0, 0, 1});
+    sum += std::round(i / 7.0f * 255) / 255;
+  }
+  v->generateMips();
+  EXPECT_NEAR(v->texel(0, 1, 0, 0, 0).r, sum / 8, kTol);  // = 0.5 within one step
+  // 3x1: level 1 is 1x1 from texels 0 and 1 (a plain 2x box: the odd last column
+  // does not contribute).
+  auto o = Texture::create2D(Format::A8, 3, 1, 0);
+  ASSERT_EQ(o->levelCount(), 2);
+  o->setTexel(0, 0, 0, 0, 0, {0, 0, 0, 0.2f});
+  o->setTexel(0, 0, 1, 0, 0, {0, 0, 0, 0.6f});
+  o->setTexel(0, 0, 2, 0, 0, {0, 0, 0, 1.0f});
+  o->generateMips();
+  EXPECT_NEAR(o->texel(0, 1, 0, 0).a, 0.4f, kTol);  // (0.2 + 0.6) / 2
+}
+
+TEST(Texture, GenerateMipsCubeFaces) {
+  auto c = Texture::createCube(Format::X8R8G8B8, 2, 0);
+  for (int f = 0; f < 6; ++f)
+    for (int i = 0; i < 4; ++i) c->setTexel(f, 0, i & 1, i >> 1, 0, {f / 5.0f, i / 3.0f, 0, 1});
+  c->generateMips();
+  for (int f = 0; f < 6; ++f) {
+    Color4 t = c->texel(f, 1, 0, 0);
+    EXPECT_NEAR(t.r, f / 5.0f, kTol);
+    EXPECT_NEAR(t.g, 0.5f, kTol);  // (0 + 1/3 + 2/3 + 1) / 4
+    EXPECT_EQ(t.a, 1.0f);
+  }
+}
+
+TEST(Texture, CompressedTexelsAndMips) {
+  auto t = Texture::create2D(Format::DXT1, 8, 8, 0);
+  // Block (1, 0): c0 = 0xF800 red > c1 = 0x001F blue; all indices 1 (0x55) -> blue.
+  uint8_t* b = t->data(0, 0) + 8;
+  const uint8_t block[8] = {0x00, 0xF8, 0x1F, 0x00, 0x55, 0x55, 0x55, 0x55};
+  std::copy(block, block + 8, b);
+  t->markDirty();
+  EXPECT_EQ(t->texel(0, 0, 5, 3), (Color4{0, 0, 1, 1}));
+  // Sample level is 8-bit: blue = 0xff0000 | alpha 0xff000000.
+  EXPECT_EQ(t->sampleLevel(0, 0).rgba8[3 * 8 + 5], 0xffff0000u);
+  EXPECT_THROW(t->generateMips(), Error);
+  EXPECT_THROW(t->setTexel(0, 0, 0, 0, 0, {}), Error);
+  EXPECT_EQ(t->dataSize(0, 3), 8u);  // 1x1 level still one block
+}
+
+TEST(Texture, SampleLevelFromManyThreads) {
+  auto t = Texture::create2D(Format::R5G6B5, 64, 64, 0);
+  std::vector<const SampleLevel*> seen(8);
+  std::vector<std::thread> threads;
+  for (int i = 0; i < 8; ++i)
+    threads.emplace_back([&, i] { seen[i] = &t->sampleLevel(0, i % 2); });
+  for (auto& th : threads) th.join();
+  for (int i = 2; i < 8; ++i) EXPECT_EQ(seen[i], seen[i % 2]);
+  EXPECT_EQ(seen[0]->width, 64);
+  EXPECT_EQ(seen[1]->width, 32);
+  EXPECT_TRUE(seen[0]->unorm8);  // packed 16-bit unorm fits 8 bits
+}
+
+TEST(Texture, SignedFormatSampleLevelIsFloat) {
+  auto t = Texture::create2D(Format::V8U8, 1, 1);
+  t->data(0, 0)[0] = 0x81;  // U = -127/127 = -1
+  t->data(0, 0)[1] = 0x40;  // V = 64/127
+  t->markDirty();
+  const SampleLevel& s = t->sampleLevel(0, 0);
+  ASSERT_FALSE(s.unorm8);
+  EXPECT_EQ(s.rgbaf[0].r, -1.0f);
+  EXPECT_NEAR(s.rgbaf[0].g, 64 / 127.0f, 1e-6f);
+  EXPECT_EQ(s.rgbaf[0].b, 1.0f);
 }

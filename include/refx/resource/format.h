@@ -80,6 +80,9 @@ size_t formatImageSize(Format f, int width, int height, int depth = 1);
 void decodeRow(Format f, const uint8_t* src, int count, Color4* out);
 // Encodes values (as a shader would read them back) into a row of a non-compressed format.
 void encodeRow(Format f, const Color4* src, int count, uint8_t* out);
+// unorm8() that maps NaN to 0 (float textures may hold NaN).
+inline uint8_t unorm8Safe(float v) { return v == v ? unorm8(v) : uint8_t(0); }
+
 // IEEE half <-> float (round to nearest even; overflow gives infinity).
 float halfToFloat(uint16_t h);
 uint16_t floatToHalf(float f);
