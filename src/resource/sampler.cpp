@@ -1,0 +1,583 @@
+// Texture sampling over 16-lane SoA batches: D3D9 addressing, point/linear filtering,
+// mip selection, cube faces, border color and sRGB.
+//
+// Two paths compute the same float operations in the same order, so they agree bit
+// for bit:
+//  * a scalar reference path, lane by lane, for every texture type, format and mode;
+//  * a vectorised kernel for the common case (one 2D level or cube face, 8-bit unorm
+//    texels, no BORDER addressing, no sRGB), run on all 16 lanes at once.
+// 8-bit unorm levels are filtered in byte units (0..255) and divided by 255 at the
+// end: point sampling returns exactly byte/255 and constant regions stay constant.
+#include "refx/resource/sampler.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "resource/sampler_internal.h"
+
+namespace refx {
+namespace {
+
+constexpr int kLanes = kBatchLanes;
+constexpr float kZeros[kLanes] = {};
+
+// ---------------------------------------------------------------- cube faces (§10)
+
+struct CubeFaceAxes {
+  int sc, tc, ma;  // direction component giving sc, tc and the major axis
+  float scSign, tcSign;
+};
+// Indexed by D3DCUBEMAP_FACES: +X, -X, +Y, -Y, +Z, -Z.
+constexpr CubeFaceAxes kCubeFaces[6] = {
+    {2, 1, 0, -1, -1},  // +X: sc = -rz, tc = -ry
+    {2, 1, 0, +1, -1},  // -X: sc = +rz, tc = -ry
+    {0, 2, 1, +1, +1},  // +Y: sc = +rx, tc = +rz
+    {0, 2, 1, +1, -1},  // -Y: sc = +rx, tc = -rz
+    {0, 1, 2, +1, -1},  // +Z: sc = +rx, tc = -ry
+    {0, 1, 2, -1, -1},  // -Z: sc = -rx, tc = -ry
+};
+
+// Major axis; ties go z > y > x as on D3D9 hardware.
+int selectCubeFace(float x, float y, float z) {
+  float ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+  if (az >= ax && az >= ay) return z < 0 ? 5 : 4;
+  if (ay >= ax) return y < 0 ? 3 : 2;
+  return x < 0 ? 1 : 0;
+}
+
+// u = (sc/|ma| + 1)/2, v = (tc/|ma| + 1)/2.
+void faceCoords(int face, const float d[3], float& u, float& v) {
+  const CubeFaceAxes& f = kCubeFaces[face];
+  float ma = std::fabs(d[f.ma]);
+  if (!(ma > 0)) {  // zero (or NaN) direction: the face center
+    u = v = 0.5f;
+    return;
+  }
+  u = (f.scSign * d[f.sc] / ma + 1.0f) * 0.5f;
+  v = (f.tcSign * d[f.tc] / ma + 1.0f) * 0.5f;
+}
+
+// Change of the face coordinates (u,v) for a change dd of the direction d, by the
+// quotient rule on u = (sc/|ma| + 1)/2 (d is kept on its own face).
+void faceDerivative(int face, const float d[3], const float dd[3], float& du, float& dv) {
+  const CubeFaceAxes& f = kCubeFaces[face];
+  float ma = std::fabs(d[f.ma]);
+  if (!(ma > 0)) {
+    du = dv = INFINITY;
+    return;
+  }
+  float dma = d[f.ma] < 0 ? -dd[f.ma] : dd[f.ma];
+  float sc = f.scSign * d[f.sc], tc = f.tcSign * d[f.tc];
+  float dsc = f.scSign * dd[f.sc], dtc = f.tcSign * dd[f.tc];
+  float inv = 0.5f / (ma * ma);
+  du = (dsc * ma - sc * dma) * inv;
+  dv = (dtc * ma - tc * dma) * inv;
+}
+
+// ---------------------------------------------------------------- level of detail
+
+// rho: the longer of the two screen-space derivative vectors, in texels of level 0.
+float footprint(const Texture& tex, const float* const c[3], int lane, const float dx[3],
+                const float dy[3]) {
+  float a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
+  switch (tex.type()) {
+    case TextureType::Cube: {
+      const float d[3] = {c[0][lane], c[1][lane], c[2][lane]};
+      int face = selectCubeFace(d[0], d[1], d[2]);
+      faceDerivative(face, d, dx, a[0], a[1]);
+      faceDerivative(face, d, dy, b[0], b[1]);
+      float s = float(tex.width(0));
+      a[0] *= s, a[1] *= s, b[0] *= s, b[1] *= s;
+      break;
+    }
+    case TextureType::Volume:
+      a[2] = dx[2] * float(tex.depth(0)), b[2] = dy[2] * float(tex.depth(0));
+      [[fallthrough]];
+    case TextureType::Texture2D:
+      a[0] = dx[0] * float(tex.width(0)), b[0] = dy[0] * float(tex.width(0));
+      a[1] = dx[1] * float(tex.height(0)), b[1] = dy[1] * float(tex.height(0));
+      break;
+  }
+  float la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  float lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+  return std::max(la, lb);
+}
+
+// λ per lane. Derivatives/Bias: one value per 2x2 quad from its top-left, top-right
+// and bottom-left lanes (masked-off lanes still give coordinates), plus the lane's
+// own bias for texldb.
+void computeLambda(const Texture& tex, const SamplerState& st, const SampleRequest& req,
+                   const float* const c[3], float lam[kLanes]) {
+  const float* lod = req.lod ? req.lod : kZeros;
+  switch (req.lodMode) {
+    case LodMode::Explicit:
+      for (int l = 0; l < kLanes; ++l) lam[l] = lod[l] + st.mipLodBias;
+      return;
+    case LodMode::Gradients: {
+      for (int l = 0; l < kLanes; ++l) {
+        float dx[3], dy[3];
+        for (int i = 0; i < 3; ++i) {
+          dx[i] = req.ddx[i] ? req.ddx[i][l] : 0.0f;
+          dy[i] = req.ddy[i] ? req.ddy[i][l] : 0.0f;
+        }
+        lam[l] = std::log2(footprint(tex, c, l, dx, dy)) + st.mipLodBias;
+      }
+      return;
+    }
+    case LodMode::Derivatives:
+    case LodMode::Bias:
+      break;
+  }
+  const bool perLaneBias = req.lodMode == LodMode::Bias;
+  for (int q = 0; q < kLanes / 4; ++q) {
+    const int tl = q * 4, tr = tl + 1, bl = tl + 2;
+    float dx[3], dy[3];
+    for (int i = 0; i < 3; ++i) {
+      dx[i] = c[i][tr] - c[i][tl];
+      dy[i] = c[i][bl] - c[i][tl];
+    }
+    float quad = std::log2(footprint(tex, c, tl, dx, dy)) + st.mipLodBias;
+    for (int k = 0; k < 4; ++k) lam[tl + k] = quad + (perLaneBias ? lod[tl + k] : 0.0f);
+  }
+}
+
+// NONE samples like POINT; ANISOTROPIC (and the quad filters) like LINEAR.
+bool isLinear(TextureFilter f) { return uint32_t(f) >= uint32_t(TextureFilter::Linear); }
+
+// Which level(s) and filter each lane uses.
+struct LanePlan {
+  int level[2][kLanes];
+  float mipFrac[kLanes];  // weight of level[1]; 0: level[0] alone
+  int linear[kLanes];     // 1: LINEAR filtering, 0: POINT
+};
+
+inline float clampFinite(float x, float lo, float hi) {
+  x = x > lo ? x : lo;  // NaN -> lo
+  return x < hi ? x : hi;
+}
+
+void planLevels(const Texture& tex, const SamplerState& st, const float lam[kLanes],
+                LanePlan& p) {
+  // λ <= 0: magnification (NaN from degenerate coordinates counts as such).
+  const int magLinear = isLinear(st.magFilter), minLinear = isLinear(st.minFilter);
+  for (int l = 0; l < kLanes; ++l) p.linear[l] = lam[l] > 0 ? minLinear : magLinear;
+  const uint32_t mip = uint32_t(st.mipFilter);
+  // MIPFILTER NONE: level 0 whatever λ and MAXMIPLEVEL.
+  if (mip == uint32_t(TextureFilter::None)) {
+    for (int l = 0; l < kLanes; ++l) p.level[0][l] = p.level[1][l] = 0, p.mipFrac[l] = 0;
+    return;
+  }
+  const int last = tex.levelCount() - 1;
+  // MAXMIPLEVEL: the most detailed level that may be used; λ is clamped to
+  // [MAXMIPLEVEL, levels-1].
+  const int first = int(std::min<uint32_t>(st.maxMipLevel, uint32_t(last)));
+  for (int l = 0; l < kLanes; ++l) {
+    float lc = clampFinite(lam[l], float(first), float(last));
+    if (mip == uint32_t(TextureFilter::Point)) {
+      p.level[0][l] = p.level[1][l] = int(std::floor(lc + 0.5f));  // nearest level
+      p.mipFrac[l] = 0;
+    } else {  // LINEAR: levels floor(λ) and floor(λ)+1, weighted by frac(λ)
+      int l0 = int(std::floor(lc));
+      p.level[0][l] = l0;
+      p.level[1][l] = std::min(l0 + 1, last);
+      p.mipFrac[l] = l0 < last ? lc - float(l0) : 0.0f;
+    }
+  }
+}
+
+// ---------------------------------------------------------------- addressing (§9)
+
+TextureAddress validAddress(TextureAddress a) {
+  uint32_t v = uint32_t(a);
+  return v >= 1 && v <= 5 ? a : TextureAddress::Wrap;
+}
+
+// Coordinates are limited to +-2^22 first (NaN goes to the low end): beyond that a
+// float has no fraction left, and it keeps every later step in int range.
+constexpr float kCoordLimit = 4194304.0f;
+
+inline float clampPosition(float x, float lo, float hi) { return clampFinite(x, lo, hi); }
+
+// floor(x) as an int, for |x| < 2^31 (the vectorised kernel computes it the same way).
+inline int floorInt(float x) {
+  int i = int(x);
+  return float(i) > x ? i - 1 : i;
+}
+
+// The coordinate reduced to one period before scaling (exact in float): WRAP keeps
+// frac(u), MIRROR keeps u mod 2. The texel chosen is the same as from u*size taken
+// modulo the period, with less rounding for large |u|.
+inline float reduceCoord(TextureAddress a, float u) {
+  u = clampPosition(u, -kCoordLimit, kCoordLimit);
+  if (a == TextureAddress::Wrap) return u - float(floorInt(u));
+  if (a == TextureAddress::Mirror) return u - 2.0f * float(floorInt(u * 0.5f));
+  return u;
+}
+
+// Texel-space positions are clamped to this range before conversion to int. It never
+// changes the texels of a finite coordinate and keeps indices small.
+inline void positionRange(TextureAddress a, int n, float& lo, float& hi) {
+  if (a == TextureAddress::Wrap) {
+    lo = -1.0f, hi = float(n);
+  } else if (a == TextureAddress::Mirror) {
+    lo = -1.0f, hi = float(2 * n);
+  } else {
+    lo = -float(n + 2), hi = float(n + 2);
+  }
+}
+
+// Texel index after addressing; -1 = outside the level (BORDER color).
+int addressTexel(TextureAddress a, int i, int n) {
+  switch (a) {
+    case TextureAddress::Mirror: {
+      int p = 2 * n, m = ((i % p) + p) % p;
+      return m < n ? m : p - 1 - m;
+    }
+    case TextureAddress::Clamp:
+      return std::clamp(i, 0, n - 1);
+    case TextureAddress::Border:
+      return i < 0 || i >= n ? -1 : i;
+    case TextureAddress::MirrorOnce:
+      return std::clamp(i < 0 ? -1 - i : i, 0, n - 1);
+    case TextureAddress::Wrap:
+      break;
+  }
+  return ((i % n) + n) % n;
+}
+
+// ---------------------------------------------------------------- scalar reference
+
+const std::array<float, 256>& srgbByteTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(float(i) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+// One level as the scalar path reads it. Texel values are in "level units": bytes
+// (0..255) for 8-bit unorm levels without sRGB, shader values otherwise.
+struct LevelReader {
+  const SampleLevel& lv;
+  bool bytes, srgb;
+  Color4 border;
+
+  LevelReader(const SampleLevel& level, const SamplerState& st)
+      : lv(level), bytes(level.unorm8 && !st.srgb), srgb(st.srgb), border(st.borderColor) {
+    if (bytes) border = {border.r * 255.0f, border.g * 255.0f, border.b * 255.0f,
+                         border.a * 255.0f};
+  }
+
+  Color4 fetch(int x, int y, int z) const {
+    if (x < 0 || y < 0 || z < 0) return border;
+    size_t i = (size_t(z) * lv.height + size_t(y)) * lv.width + size_t(x);
+    if (lv.unorm8) {
+      uint32_t p = lv.rgba8[i];
+      int r = p & 255, g = (p >> 8) & 255, b = (p >> 16) & 255, a = p >> 24;
+      if (bytes) return {float(r), float(g), float(b), float(a)};
+      const auto& lin = srgbByteTable();
+      return {lin[r], lin[g], lin[b], float(a) / 255.0f};
+    }
+    Color4 c = lv.rgbaf[i];
+    if (srgb) c = {srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a};
+    return c;
+  }
+
+  Color4 finish(Color4 c) const {
+    if (bytes) return {c.r / 255.0f, c.g / 255.0f, c.b / 255.0f, c.a / 255.0f};
+    return c;
+  }
+};
+
+inline Color4 lerp(Color4 a, Color4 b, float t) {
+  return {a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b),
+          a.a + t * (b.a - a.a)};
+}
+
+Color4 sampleScalar(const LevelReader& rd, const TextureAddress addr[3], bool linear,
+                    bool volume, float u, float v, float w) {
+  const float coord[3] = {u, v, w};
+  const int size[3] = {rd.lv.width, rd.lv.height, rd.lv.depth};
+  int i0[3] = {0, 0, 0}, i1[3] = {0, 0, 0};
+  float frac[3] = {0, 0, 0};
+  for (int a = 0; a < (volume ? 3 : 2); ++a) {
+    float lo, hi;
+    positionRange(addr[a], size[a], lo, hi);
+    // POINT: texel floor(u*W); LINEAR: texels floor(u*W - 0.5) and the next one.
+    float x = reduceCoord(addr[a], coord[a]) * float(size[a]);
+    if (linear) x = x - 0.5f;
+    x = clampPosition(x, lo, hi);
+    int i = floorInt(x);
+    frac[a] = x - float(i);
+    i0[a] = addressTexel(addr[a], i, size[a]);
+    i1[a] = addressTexel(addr[a], i + 1, size[a]);
+  }
+  if (!linear) return rd.finish(rd.fetch(i0[0], i0[1], i0[2]));
+  auto slice = [&](int z) {
+    Color4 top = lerp(rd.fetch(i0[0], i0[1], z), rd.fetch(i1[0], i0[1], z), frac[0]);
+    Color4 bottom = lerp(rd.fetch(i0[0], i1[1], z), rd.fetch(i1[0], i1[1], z), frac[0]);
+    return lerp(top, bottom, frac[1]);
+  };
+  Color4 c = slice(i0[2]);
+  if (volume) c = lerp(c, slice(i1[2]), frac[2]);
+  return rd.finish(c);
+}
+
+// ---------------------------------------------------------------- vectorised kernel
+
+// Eight lanes as one value (GCC/Clang vector extensions): the kernel is written with
+// these so that it is vectorised whatever the compiler's loop heuristics decide.
+typedef float v8f __attribute__((vector_size(32)));
+typedef int v8i __attribute__((vector_size(32)));
+
+inline v8f splat(float f) { return v8f{} + f; }
+inline v8f toFloat(v8i i) { return __builtin_convertvector(i, v8f); }
+inline v8f clampPosition(v8f x, float lo, float hi) {
+  const v8f l = splat(lo), h = splat(hi);
+  x = x > l ? x : l;
+  return x < h ? x : h;
+}
+inline v8i floorInt(v8f x) {
+  v8i i = __builtin_convertvector(x, v8i);
+  return i + (toFloat(i) > x);  // true is -1
+}
+
+// Texel indices (after addressing) and weights of one axis for all lanes: the same
+// float operations as sampleScalar. Indices before addressing lie within the position
+// range (plus one), so one step of each rule is enough.
+template <TextureAddress A>
+v8i addressLanes(v8i i, int n) {
+  const int p = 2 * n;
+  if constexpr (A == TextureAddress::Wrap) {
+    return i < 0 ? i + n : (i >= n ? i - n : i);
+  } else if constexpr (A == TextureAddress::Mirror) {
+    v8i m = i < 0 ? i + p : (i >= p ? i - p : i);
+    return m < n ? m : (p - 1) - m;
+  } else if constexpr (A == TextureAddress::MirrorOnce) {
+    v8i m = i < 0 ? -1 - i : i;
+    return m < n - 1 ? m : n - 1;
+  } else {  // Clamp
+    v8i m = i > 0 ? i : 0;
+    return m < n - 1 ? m : n - 1;
+  }
+}
+
+template <TextureAddress A>
+void axisLanesFor(bool linear, const float* c, int n, int* i0, int* i1, float* frac) {
+  const float fn = float(n), off = linear ? 0.5f : 0.0f;
+  float lo, hi;
+  positionRange(A, n, lo, hi);
+  for (int k = 0; k < kLanes; k += 8) {
+    v8f u;
+    std::memcpy(&u, c + k, sizeof u);
+    u = clampPosition(u, -kCoordLimit, kCoordLimit);
+    if constexpr (A == TextureAddress::Wrap) u = u - toFloat(floorInt(u));
+    if constexpr (A == TextureAddress::Mirror) u = u - 2.0f * toFloat(floorInt(u * 0.5f));
+    v8f x = clampPosition(u * fn - off, lo, hi);
+    v8i i = floorInt(x);
+    v8f f = x - toFloat(i);
+    v8i a0 = addressLanes<A>(i, n), a1 = addressLanes<A>(i + 1, n);
+    std::memcpy(frac + k, &f, sizeof f);
+    std::memcpy(i0 + k, &a0, sizeof a0);
+    std::memcpy(i1 + k, &a1, sizeof a1);
+  }
+}
+
+void axisLanes(TextureAddress a, bool linear, const float* c, int n, int* i0, int* i1,
+               float* frac) {
+  switch (a) {
+    case TextureAddress::Wrap:
+      return axisLanesFor<TextureAddress::Wrap>(linear, c, n, i0, i1, frac);
+    case TextureAddress::Mirror:
+      return axisLanesFor<TextureAddress::Mirror>(linear, c, n, i0, i1, frac);
+    case TextureAddress::MirrorOnce:
+      return axisLanesFor<TextureAddress::MirrorOnce>(linear, c, n, i0, i1, frac);
+    default:
+      return axisLanesFor<TextureAddress::Clamp>(linear, c, n, i0, i1, frac);
+  }
+}
+
+bool fastAddress(TextureAddress a) { return a != TextureAddress::Border; }
+
+// Texel loads stay scalar: on current x86 cores they are faster than vpgatherdd.
+inline uint32_t scalarLoad(const uint32_t* texels, int i) {
+  uint32_t v = texels[i];
+#if defined(__GNUC__)
+  asm("" : "+r"(v));  // keeps the loop from being turned into a gather
+#endif
+  return v;
+}
+
+// One 2D level of packed rgba8 texels, all lanes.
+void kernel2D(const SampleLevel& lv, TextureAddress au, TextureAddress av, bool linear,
+              const float* u, const float* v, float out[4][kLanes]) {
+  int x0[kLanes], x1[kLanes], y0[kLanes], y1[kLanes];
+  float fx[kLanes], fy[kLanes];
+  axisLanes(au, linear, u, lv.width, x0, x1, fx);
+  axisLanes(av, linear, v, lv.height, y0, y1, fy);
+  const uint32_t* texels = lv.rgba8.data();
+  const int w = lv.width;
+  if (!linear) {
+    int a[kLanes];
+    for (int l = 0; l < kLanes; ++l) a[l] = y0[l] * w + x0[l];
+    uint32_t p[kLanes];
+    for (int l = 0; l < kLanes; ++l) p[l] = scalarLoad(texels, a[l]);
+    for (int ch = 0; ch < 4; ++ch) {
+      const int shift = 8 * ch;
+      for (int l = 0; l < kLanes; ++l) out[ch][l] = float(int((p[l] >> shift) & 255)) / 255.0f;
+    }
+    return;
+  }
+  int a00[kLanes], a10[kLanes], a01[kLanes], a11[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const int r0 = y0[l] * w, r1 = y1[l] * w;
+    a00[l] = r0 + x0[l], a10[l] = r0 + x1[l], a01[l] = r1 + x0[l], a11[l] = r1 + x1[l];
+  }
+  uint32_t p00[kLanes], p10[kLanes], p01[kLanes], p11[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    p00[l] = scalarLoad(texels, a00[l]);
+    p10[l] = scalarLoad(texels, a10[l]);
+    p01[l] = scalarLoad(texels, a01[l]);
+    p11[l] = scalarLoad(texels, a11[l]);
+  }
+  for (int ch = 0; ch < 4; ++ch) {
+    const int shift = 8 * ch;
+    for (int l = 0; l < kLanes; ++l) {
+      float t00 = float(int((p00[l] >> shift) & 255)), t10 = float(int((p10[l] >> shift) & 255));
+      float t01 = float(int((p01[l] >> shift) & 255)), t11 = float(int((p11[l] >> shift) & 255));
+      float top = t00 + fx[l] * (t10 - t00);
+      float bottom = t01 + fx[l] * (t11 - t01);
+      out[ch][l] = (top + fy[l] * (bottom - top)) / 255.0f;
+    }
+  }
+}
+
+// ---------------------------------------------------------------- driver
+
+// Samples one pass (level[pass] of each lane in `todo`) into dst; lanes sharing face,
+// level and filter are sampled together.
+void samplePass(const Texture& tex, const SamplerState& st, const LanePlan& plan, int pass,
+                uint32_t todo, const int face[kLanes], const float* cu, const float* cv,
+                const float* cw, const TextureAddress addr[3], bool allowFast,
+                float dst[4][kLanes]) {
+  const TextureType type = tex.type();
+  int key[kLanes];
+  for (int l = 0; l < kLanes; ++l)
+    key[l] = (face[l] << 24) | (plan.level[pass][l] << 1) | plan.linear[l];
+  while (todo) {
+    const int lead = std::countr_zero(todo);
+    const int f = face[lead], level = plan.level[pass][lead];
+    const bool linear = plan.linear[lead];
+    uint32_t group = 0;
+    for (int l = 0; l < kLanes; ++l) group |= uint32_t(key[l] == key[lead]) << l;
+    group &= todo;
+    todo &= ~group;
+
+    const SampleLevel& lv = tex.sampleLevel(f, level);
+    if (lv.width <= 0 || lv.height <= 0 || lv.depth <= 0) continue;
+    if (allowFast && type != TextureType::Volume && lv.unorm8 && !st.srgb &&
+        fastAddress(addr[0]) && fastAddress(addr[1]) &&
+        lv.rgba8.size() == size_t(lv.width) * size_t(lv.height)) {
+      if (group == 0xffff) {
+        kernel2D(lv, addr[0], addr[1], linear, cu, cv, dst);
+      } else {
+        float tmp[4][kLanes];
+        kernel2D(lv, addr[0], addr[1], linear, cu, cv, tmp);
+        for (int ch = 0; ch < 4; ++ch)
+          for (int l = 0; l < kLanes; ++l)
+            if (group >> l & 1) dst[ch][l] = tmp[ch][l];
+      }
+      continue;
+    }
+    const LevelReader reader(lv, st);
+    for (int l = 0; l < kLanes; ++l) {
+      if (!(group >> l & 1)) continue;
+      Color4 s = sampleScalar(reader, addr, linear, type == TextureType::Volume, cu[l], cv[l],
+                              cw[l]);
+      dst[0][l] = s.r, dst[1][l] = s.g, dst[2][l] = s.b, dst[3][l] = s.a;
+    }
+  }
+}
+
+void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest& req,
+                float out[4][kLanes], bool allowFast) {
+  const float* c[3] = {req.u ? req.u : kZeros, req.v ? req.v : kZeros, req.w ? req.w : kZeros};
+  const TextureType type = tex.type();
+  TextureAddress addr[3] = {validAddress(st.addressU), validAddress(st.addressV),
+                            validAddress(st.addressW)};
+
+  // λ only matters when it picks a level or chooses between MAGFILTER and MINFILTER.
+  float lam[kLanes] = {};
+  if (st.mipFilter != TextureFilter::None || isLinear(st.magFilter) != isLinear(st.minFilter))
+    computeLambda(tex, st, req, c, lam);
+  LanePlan plan;
+  planLevels(tex, st, lam, plan);
+
+  // 2D coordinates (on each lane's cube face for cube maps).
+  int face[kLanes] = {};
+  float faceU[kLanes], faceV[kLanes];
+  const float* cu = c[0];
+  const float* cv = c[1];
+  if (type == TextureType::Cube) {
+    for (int l = 0; l < kLanes; ++l) {
+      const float d[3] = {c[0][l], c[1][l], c[2][l]};
+      face[l] = selectCubeFace(d[0], d[1], d[2]);
+      faceCoords(face[l], d, faceU[l], faceV[l]);
+    }
+    cu = faceU, cv = faceV;
+    // Filtering clamps within the face (no seamless filtering across edges).
+    addr[0] = addr[1] = TextureAddress::Clamp;
+  }
+
+  const uint32_t mask = req.laneMask;
+  samplePass(tex, st, plan, 0, mask, face, cu, cv, c[2], addr, allowFast, out);
+
+  // MIPFILTER LINEAR: blend level[1] in by frac(λ).
+  uint32_t blend = 0;
+  for (int l = 0; l < kLanes; ++l) blend |= uint32_t(plan.mipFrac[l] > 0) << l;
+  blend &= mask;
+  if (blend) {
+    float second[4][kLanes] = {};
+    samplePass(tex, st, plan, 1, blend, face, cu, cv, c[2], addr, allowFast, second);
+    for (int ch = 0; ch < 4; ++ch)
+      for (int l = 0; l < kLanes; ++l) {
+        float r0 = out[ch][l], f = plan.mipFrac[l];
+        out[ch][l] = f > 0 ? r0 + f * (second[ch][l] - r0) : r0;
+      }
+  }
+
+  // Lanes not asked for read 0.
+  if (mask != 0xffff)
+    for (int ch = 0; ch < 4; ++ch)
+      for (int l = 0; l < kLanes; ++l)
+        if (!(mask >> l & 1)) out[ch][l] = 0;
+}
+
+}  // namespace
+
+float srgbToLinear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+int cubeFaceCoords(float x, float y, float z, float& u, float& v) {
+  const float d[3] = {x, y, z};
+  int face = selectCubeFace(x, y, z);
+  faceCoords(face, d, u, v);
+  return face;
+}
+
+void sampleTexture(const Texture& tex, const SamplerState& state, const SampleRequest& req,
+                   float out[4][kBatchLanes]) {
+  sampleImpl(tex, state, req, out, true);
+}
+
+void sampleTextureReference(const Texture& tex, const SamplerState& state,
+                            const SampleRequest& req, float out[4][kBatchLanes]) {
+  sampleImpl(tex, state, req, out, false);
+}
+
+}  // namespace refx
