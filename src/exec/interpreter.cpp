@@ -52,13 +52,18 @@ struct Operand {
   const float* c[4];
 };
 
-Operand fetch(const Src& s, const BatchRegisters& regs, const ExecContext& ctx,
-              const Program& p, float (*scratch)[N]) {
-  Operand o;
+inline void fetch(const Src& s, const BatchRegisters& regs, const ExecContext& ctx,
+                  const Program& p, float (*scratch)[N], Operand& o) {
   bool uniform = s.file == RegFile::Const || s.file == RegFile::Imm;
   if (!uniform && s.mod == SrcMod::None) {
-    for (int c = 0; c < 4; ++c) o.c[c] = laneBase(regs, s.file, s.index, (s.swizzle >> (2 * c)) & 3);
-    return o;
+    const LaneVec4* base = s.file == RegFile::Temp    ? &regs.temps[s.index]
+                           : s.file == RegFile::Input ? &regs.inputs[s.index]
+                                                      : &regs.outputs[s.index];
+    o.c[0] = base->c[s.swizzle & 3];
+    o.c[1] = base->c[(s.swizzle >> 2) & 3];
+    o.c[2] = base->c[(s.swizzle >> 4) & 3];
+    o.c[3] = base->c[(s.swizzle >> 6) & 3];
+    return;
   }
   if (uniform) {
     Vec4 v{0, 0, 0, 0};
@@ -72,7 +77,7 @@ Operand fetch(const Src& s, const BatchRegisters& regs, const ExecContext& ctx,
       for (int l = 0; l < N; ++l) scratch[c][l] = x;
       o.c[c] = scratch[c];
     }
-    return o;
+    return;
   }
   for (int c = 0; c < 4; ++c) {
     const float* b = laneBase(regs, s.file, s.index, (s.swizzle >> (2 * c)) & 3);
@@ -85,7 +90,6 @@ Operand fetch(const Src& s, const BatchRegisters& regs, const ExecContext& ctx,
     }
     o.c[c] = d;
   }
-  return o;
 }
 
 float* destBase(BatchRegisters& regs, const Dst& d, int c) {
@@ -126,6 +130,37 @@ void sample(const Instr& in, const Operand& coord, const ExecContext& ctx, uint1
   }
 }
 
+template <class F>
+inline void map1(float* __restrict r, const float* __restrict a, F f) {
+  for (int l = 0; l < N; ++l) r[l] = f(a[l]);
+}
+template <class F>
+inline void map2(float* __restrict r, const float* __restrict a, const float* __restrict b, F f) {
+  for (int l = 0; l < N; ++l) r[l] = f(a[l], b[l]);
+}
+template <class F>
+inline void map3(float* __restrict r, const float* __restrict a, const float* __restrict b,
+                 const float* __restrict c, F f) {
+  for (int l = 0; l < N; ++l) r[l] = f(a[l], b[l], c[l]);
+}
+
+// Clamp with NaN -> lo (D3D saturates NaN to 0); written so it vectorises.
+inline void writeClamped(float* __restrict d, const float* __restrict r, float lo, float hi) {
+  for (int l = 0; l < N; ++l) {
+    const float v = r[l] > lo ? r[l] : lo;
+    d[l] = v < hi ? v : hi;
+  }
+}
+
+inline void writeScaledClamped(float* __restrict d, const float* __restrict r, float k, float lo,
+                               float hi) {
+  for (int l = 0; l < N; ++l) {
+    const float x = r[l] * k;
+    const float v = x > lo ? x : lo;
+    d[l] = v < hi ? v : hi;
+  }
+}
+
 }  // namespace
 
 void BatchRegisters::resize(const Program& p) { BatchRegistersResize(*this, p); }
@@ -136,7 +171,7 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
   for (const Instr& in : program.code) {
     const int nsrc = sourceCount(in.op);
     Operand s[3];
-    for (int i = 0; i < nsrc; ++i) s[i] = fetch(in.src[i], regs, ctx, program, scratch[i]);
+    for (int i = 0; i < nsrc; ++i) fetch(in.src[i], regs, ctx, program, scratch[i], s[i]);
     const uint8_t mask = in.dst.mask;
     auto each = [&](auto&& f) {
       for (int c = 0; c < 4; ++c)
@@ -144,20 +179,20 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
     };
     switch (in.op) {
       case Op::Mov:
-        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l]; });
+        each([&](int c, float* r) { map1(r, s[0].c[c], [](float a) { return a; }); });
         break;
       case Op::Add:
-        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] + s[1].c[c][l]; });
+        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a + b; }); });
         break;
       case Op::Sub:
-        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] - s[1].c[c][l]; });
+        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a - b; }); });
         break;
       case Op::Mul:
-        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] * s[1].c[c][l]; });
+        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a * b; }); });
         break;
       case Op::Mad:
         each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] * s[1].c[c][l] + s[2].c[c][l];
+          map3(r, s[0].c[c], s[1].c[c], s[2].c[c], [](float a, float b, float d) { return a * b + d; });
         });
         break;
       case Op::Dp3:
@@ -185,24 +220,16 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
         });
         break;
       case Op::Min:
-        each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = std::min(s[0].c[c][l], s[1].c[c][l]);
-        });
+        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a < b ? a : b; }); });
         break;
       case Op::Max:
-        each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = std::max(s[0].c[c][l], s[1].c[c][l]);
-        });
+        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a > b ? a : b; }); });
         break;
       case Op::Slt:
-        each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] < s[1].c[c][l] ? 1.0f : 0.0f;
-        });
+        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a < b ? 1.0f : 0.0f; }); });
         break;
       case Op::Sge:
-        each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] >= s[1].c[c][l] ? 1.0f : 0.0f;
-        });
+        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a >= b ? 1.0f : 0.0f; }); });
         break;
       case Op::Frc:
         each([&](int c, float* r) {
@@ -224,23 +251,16 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
         });
         break;
       case Op::Lrp:
-        each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l)
-            r[l] = s[0].c[c][l] * (s[1].c[c][l] - s[2].c[c][l]) + s[2].c[c][l];
-        });
+        each([&](int c, float* r) { map3(r, s[0].c[c], s[1].c[c], s[2].c[c], [](float a, float b, float d) { return a * (b - d) + d; }); });
         break;
       case Op::Cmp:
-        each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] >= 0.0f ? s[1].c[c][l] : s[2].c[c][l];
-        });
+        each([&](int c, float* r) { map3(r, s[0].c[c], s[1].c[c], s[2].c[c], [](float a, float b, float d) { return a >= 0.0f ? b : d; }); });
         break;
       case Op::Cnd:
-        each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] > 0.5f ? s[1].c[c][l] : s[2].c[c][l];
-        });
+        each([&](int c, float* r) { map3(r, s[0].c[c], s[1].c[c], s[2].c[c], [](float a, float b, float d) { return a > 0.5f ? b : d; }); });
         break;
       case Op::Abs:
-        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = std::fabs(s[0].c[c][l]); });
+        each([&](int c, float* r) { map1(r, s[0].c[c], [](float a) { return std::fabs(a); }); });
         break;
       case Op::Nrm: {
         float k[N];
@@ -271,17 +291,21 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
     }
     // Result modifiers: shift, then saturate or clamp to the version's range.
     const float scale = in.shift == 0 ? 1.0f : std::ldexp(1.0f, in.shift);
+    const bool clampResult = in.saturate || in.clamp;
+    const float lo = in.saturate ? 0.0f : in.clampLo, hi = in.saturate ? 1.0f : in.clampHi;
     for (int c = 0; c < 4; ++c) {
       if (!(mask & (1 << c))) continue;
-      float* r = res[c];
-      if (in.shift != 0)
-        for (int l = 0; l < N; ++l) r[l] *= scale;
-      if (in.saturate)
-        for (int l = 0; l < N; ++l) r[l] = std::min(std::max(r[l], 0.0f), 1.0f);
-      else if (in.clamp)
-        for (int l = 0; l < N; ++l) r[l] = std::min(std::max(r[l], in.clampLo), in.clampHi);
-      float* d = destBase(regs, in.dst, c);
-      if (d) std::memcpy(d, r, sizeof(float) * N);
+      float* __restrict d = destBase(regs, in.dst, c);
+      if (!d) continue;
+      const float* __restrict r = res[c];
+      if (in.shift != 0) {
+        if (clampResult) writeScaledClamped(d, r, scale, lo, hi);
+        else for (int l = 0; l < N; ++l) d[l] = r[l] * scale;
+      } else if (clampResult) {
+        writeClamped(d, r, lo, hi);
+      } else {
+        std::memcpy(d, r, sizeof(float) * N);
+      }
     }
   }
 }

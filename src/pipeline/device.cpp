@@ -239,14 +239,23 @@ int varyingForPixelInput(int input) {
   return -1;
 }
 
-// Components of each input register the program reads.
-std::array<uint8_t, 32> inputComponentsRead(const exec::Program& p) {
+// Components of each input register the program reads. Texture coordinates only
+// count the components the bound texture's type needs (2D: u,v; cube/volume: +w),
+// plus .w for projected, biased and explicit-LOD lookups.
+std::array<uint8_t, 32> inputComponentsRead(const exec::Program& p, const DeviceState& st) {
   std::array<uint8_t, 32> used{};
   for (const exec::Instr& in : p.code)
     for (int i = 0; i < exec::sourceCount(in.op); ++i) {
       const exec::Src& s = in.src[i];
       if (s.file != exec::RegFile::Input || s.index >= 32) continue;
-      for (int c = 0; c < 4; ++c) used[s.index] |= uint8_t(1u << ((s.swizzle >> (2 * c)) & 3));
+      uint8_t lanes = 0xF;
+      if (in.op >= exec::Op::Tex && in.op <= exec::Op::TexLod) {
+        const Texture* t = in.sampler < st.textures.size() ? st.textures[in.sampler].get() : nullptr;
+        lanes = (t && t->type() == TextureType::Texture2D) ? 0x3 : 0x7;
+        if (in.op != exec::Op::Tex) lanes |= 0x8;
+      }
+      for (int c = 0; c < 4; ++c)
+        if (lanes & (1 << c)) used[s.index] |= uint8_t(1u << ((s.swizzle >> (2 * c)) & 3));
     }
   return used;
 }
@@ -534,7 +543,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.execContext.samplers = bindings.data();
   d.execContext.samplerCount = kMaxPixelSamplers;
   const bool flat = st.rs(RS_SHADEMODE) == SHADE_FLAT;
-  const auto used = inputComponentsRead(pprog);
+  const auto used = inputComponentsRead(pprog, st);
   for (int i = 0; i < 32; ++i) {
     if (!used[i]) continue;
     if (i == kPixelInPosition) {

@@ -100,9 +100,40 @@ static inline uint8_t toUnorm8(float v) {
   return static_cast<uint8_t>(v * 255.0f + 0.5f);
 }
 
+// Opaque writes with nothing but an (already done) depth test: convert the whole
+// batch to 8 bits at once and store the live lanes.
+static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
+                        const float (*color)[kBatchLanes]) {
+  alignas(64) uint32_t packed[kBatchLanes];
+  for (int l = 0; l < kBatchLanes; ++l) {
+    const uint32_t r = toUnorm8(color[0][l]), g = toUnorm8(color[1][l]), b = toUnorm8(color[2][l]);
+    const uint32_t a = d.colorHasAlpha ? toUnorm8(color[3][l]) : 255u;
+    packed[l] = (a << 24) | (r << 16) | (g << 8) | b;
+  }
+  if (mask == 0xffff && bx + 4 <= d.width && by + 4 <= d.height) {
+    for (int row = 0; row < 4; ++row) {
+      uint32_t* dst = reinterpret_cast<uint32_t*>(d.color + size_t(by + row) * d.colorPitch) + bx;
+      const int q = (row >> 1) * 8 + (row & 1) * 2;  // lanes of this row: q, q+1, q+4, q+5
+      dst[0] = packed[q];
+      dst[1] = packed[q + 1];
+      dst[2] = packed[q + 4];
+      dst[3] = packed[q + 5];
+    }
+    return;
+  }
+  for (int l = 0; l < kBatchLanes; ++l)
+    if (mask & (1 << l))
+      reinterpret_cast<uint32_t*>(d.color + size_t(by + kLaneY[l]) * d.colorPitch)[bx + kLaneX[l]] = packed[l];
+}
+
 void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask,
                 const float (*color)[kBatchLanes], const float* z, bool depthAlreadyTested, bool counterClockwise) {
   const DeviceState& st = *d.state;
+  if (!d.blend.enable && !d.alphaTest && !d.stencil && d.blend.writeMask == 0xf &&
+      (!d.depthTest || depthAlreadyTested)) {
+    storeOpaque(d, bx, by, mask, color);
+    return;
+  }
   for (int l = 0; l < kBatchLanes; ++l) {
     if (!(mask & (1 << l))) continue;
     const int x = bx + kLaneX[l], y = by + kLaneY[l];

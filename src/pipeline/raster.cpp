@@ -31,19 +31,35 @@ void bin(const RasterDraw& d, TileBins& bins) {
   }
 }
 
+// Per-lane pixel offsets inside a batch, as floats (interpolation).
+alignas(64) constexpr float kLaneXf[N] = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
+alignas(64) constexpr float kLaneYf[N] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
+
 // Coverage of a 4x4 batch at (bx, by) by primitive p.
 uint16_t coverage(const Primitive& p, int bx, int by) {
   uint16_t mask = 0;
   if (p.kind == PrimKind::Triangle) {
     constexpr int64_t one = int64_t(1) << kSubPixelBits;
     int64_t e0[3];
-    for (int k = 0; k < 3; ++k)
+    bool inside = true;
+    for (int k = 0; k < 3; ++k) {
       e0[k] = p.edgeA[k] * (bx * one) + p.edgeB[k] * (by * one) + p.edgeC[k] + p.edgeBias[k];
-    for (int l = 0; l < N; ++l) {
-      const int64_t dx = kLaneX[l] * one, dy = kLaneY[l] * one;
-      bool in = true;
-      for (int k = 0; k < 3; ++k) in &= e0[k] + p.edgeA[k] * dx + p.edgeB[k] * dy > 0;
-      mask |= uint16_t(in) << l;
+      // Extremes of the edge function over the block's pixel centres (offsets 0..3).
+      const int64_t ax = p.edgeA[k] * 3 * one, by3 = p.edgeB[k] * 3 * one;
+      const int64_t lo = e0[k] + std::min<int64_t>(ax, 0) + std::min<int64_t>(by3, 0);
+      const int64_t hi = e0[k] + std::max<int64_t>(ax, 0) + std::max<int64_t>(by3, 0);
+      if (hi <= 0) return 0;  // whole block outside this edge
+      inside &= lo > 0;
+    }
+    if (inside) {
+      mask = 0xffff;
+    } else {
+      for (int l = 0; l < N; ++l) {
+        const int64_t dx = kLaneX[l] * one, dy = kLaneY[l] * one;
+        bool in = true;
+        for (int k = 0; k < 3; ++k) in &= e0[k] + p.edgeA[k] * dx + p.edgeB[k] * dy > 0;
+        mask |= uint16_t(in) << l;
+      }
     }
   } else if (p.kind == PrimKind::Line) {
     // One pixel per step along the major axis: the pixel whose centre is nearest
@@ -58,10 +74,12 @@ uint16_t coverage(const Primitive& p, int bx, int by) {
   } else {
     mask = 0xffff;  // points: the bounding box is the point's footprint
   }
-  // Clip to the primitive's scissor/viewport bounds.
-  for (int l = 0; l < N; ++l) {
-    const int x = bx + kLaneX[l], y = by + kLaneY[l];
-    if (x < p.minX || x > p.maxX || y < p.minY || y > p.maxY) mask &= uint16_t(~(1u << l));
+  // Clip to the primitive's scissor/viewport bounds (only blocks on the border).
+  if (bx < p.minX || by < p.minY || bx + 3 > p.maxX || by + 3 > p.maxY) {
+    for (int l = 0; l < N; ++l) {
+      const int x = bx + kLaneX[l], y = by + kLaneY[l];
+      if (x < p.minX || x > p.maxX || y < p.minY || y > p.maxY) mask &= uint16_t(~(1u << l));
+    }
   }
   return mask;
 }
@@ -72,31 +90,35 @@ struct TileWorker {
   alignas(64) float invW[N];
 };
 
+// value[l] = (base + dx*fx[l] + dy*fy[l]) * scale[l]
+inline void evalPlane(const float* __restrict pl, const float* __restrict fx,
+                      const float* __restrict fy, const float* __restrict scale,
+                      float* __restrict out) {
+  const float a = pl[0], dx = pl[1], dy = pl[2];
+  for (int l = 0; l < N; ++l) out[l] = (a + dx * fx[l] + dy * fy[l]) * scale[l];
+}
+
 void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_t mask,
                 TileWorker& w, uint64_t& shaded) {
   const float* pl = d.planes.data() + p.planeOffset;
-  float fx[N], fy[N];
+  alignas(64) float fx[N], fy[N], ones[N], wv[N];
+  const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
   for (int l = 0; l < N; ++l) {
-    fx[l] = float(bx + kLaneX[l]) - p.originX;
-    fy[l] = float(by + kLaneY[l]) - p.originY;
+    fx[l] = ox + kLaneXf[l];
+    fy[l] = oy + kLaneYf[l];
+    ones[l] = 1.0f;
   }
-  // invW and z planes.
-  for (int l = 0; l < N; ++l) w.invW[l] = pl[0] + pl[1] * fx[l] + pl[2] * fy[l];
-  for (int l = 0; l < N; ++l) w.z[l] = std::clamp(pl[3] + pl[4] * fx[l] + pl[5] * fy[l], 0.0f, 1.0f);
+  evalPlane(pl, fx, fy, ones, w.invW);
+  evalPlane(pl + 3, fx, fy, ones, w.z);
+  for (int l = 0; l < N; ++l) w.z[l] = std::min(std::max(w.z[l], 0.0f), 1.0f);
   if (d.earlyDepth) {
     mask = earlyDepthTest(d, bx, by, mask, w.z, d.depthWrite);
     if (!mask) return;
   }
-  float wv[N];
   for (int l = 0; l < N; ++l) wv[l] = 1.0f / w.invW[l];
   const float* ip = pl + 6;
   for (const InterpolatedInput& in : d.inputs) {
-    float* dst = w.regs.inputs[in.input].c[in.component];
-    if (in.flat) {
-      for (int l = 0; l < N; ++l) dst[l] = ip[0];
-    } else {
-      for (int l = 0; l < N; ++l) dst[l] = (ip[0] + ip[1] * fx[l] + ip[2] * fy[l]) * wv[l];
-    }
+    evalPlane(ip, fx, fy, in.flat ? ones : wv, w.regs.inputs[in.input].c[in.component]);
     ip += 3;
   }
   if (d.usesPosition) {
