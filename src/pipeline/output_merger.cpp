@@ -105,11 +105,20 @@ static inline uint8_t toUnorm8(float v) {
 static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
                         const float (*color)[kBatchLanes]) {
   alignas(64) uint32_t packed[kBatchLanes];
-  for (int l = 0; l < kBatchLanes; ++l) {
-    const uint32_t r = toUnorm8(color[0][l]), g = toUnorm8(color[1][l]), b = toUnorm8(color[2][l]);
-    const uint32_t a = d.colorHasAlpha ? toUnorm8(color[3][l]) : 255u;
-    packed[l] = (a << 24) | (r << 16) | (g << 8) | b;
+  alignas(64) int32_t q[4][kBatchLanes];
+  for (int c = 0; c < 4; ++c) {
+    const float* __restrict src = color[c];
+    for (int l = 0; l < kBatchLanes; ++l) {
+      // Same rounding as toUnorm8; NaN and negatives become 0.
+      float v = src[l] > 0.0f ? src[l] : 0.0f;
+      v = v < 1.0f ? v : 1.0f;
+      q[c][l] = int32_t(v * 255.0f + 0.5f);
+    }
   }
+  const uint32_t alphaOr = d.colorHasAlpha ? 0u : 0xff000000u;
+  for (int l = 0; l < kBatchLanes; ++l)
+    packed[l] = ((uint32_t(q[3][l]) << 24) | alphaOr) | (uint32_t(q[0][l]) << 16) |
+                (uint32_t(q[1][l]) << 8) | uint32_t(q[2][l]);
   if (mask == 0xffff && bx + 4 <= d.width && by + 4 <= d.height) {
     for (int row = 0; row < 4; ++row) {
       uint32_t* dst = reinterpret_cast<uint32_t*>(d.color + size_t(by + row) * d.colorPitch) + bx;
