@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <unistd.h>
 
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/scene_script.h"
@@ -630,4 +631,121 @@ TEST(SceneTextures, FileCopiesAndChecksSize) {
   }
   EXPECT_THROW(createSceneTexture(nth<TextureDef>(s, 2), image.get()), Error);
   EXPECT_THROW(createSceneTexture(nth<TextureDef>(s, 0), nullptr), Error);
+}
+
+// ---- running against a device (state only: nothing here depends on drawn pixels)
+
+#include <filesystem>
+
+#include "refx/pipeline/device.h"
+#include "refx/resource/image_io.h"
+
+namespace {
+
+CapsProfile testCaps() {
+  CapsProfile caps;
+  caps.name = "test";
+  return caps;
+}
+
+std::string runError(std::string_view text, CapsProfile caps = testCaps()) {
+  Device device(caps);
+  try {
+    runSceneScript(parseSceneScript(text, "r.scene"), device);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST(SceneRun, CreatesTargetAndAppliesState) {
+  Device device(testCaps());
+  SceneScript s = parseSceneScript(
+      "size 8 4 X8R8G8B8\n"
+      "rs SRCBLEND INVSRCALPHA\n"
+      "rs FOGEND 0.75\n"
+      "tss 1 ALPHAOP MODULATE2X\n"
+      "samp vs0 MAGFILTER LINEAR\n"
+      "texture t 2d A8R8G8B8 2 2 solid 0xff00ff00\n"
+      "settex 3 t\n"
+      "transform VIEW 1 0 0 0  0 1 0 0  0 0 1 0  0 0 9 1\n"
+      "material 1,0,0 0,0,0 0,0,0 0,0,0 8\n"
+      "light 2 point 1,1,1 0,0,0 0,0,0 1 2 3 10 1 0 0\n"
+      "light 5 directional 1,1,1 0,0,0 0,0,0 0 0 1\n"
+      "light 5 off\n"
+      "viewport 2 1 4 2\n"
+      "scissor 1 1 3 3\n"
+      "vsconst c10 1 2 3 4\n"
+      "psconsti i1 5 6 7 8\n"
+      "vsconstb b15 TRUE\n"
+      "vs none\n",
+      "r.scene");
+  SceneOutput out = runSceneScript(s, device);
+  ASSERT_TRUE(out.target);
+  EXPECT_EQ(out.target->width(), 8);
+  EXPECT_EQ(out.target->height(), 4);
+  EXPECT_EQ(out.target->format(), Format::X8R8G8B8);
+  EXPECT_EQ(device.renderTarget(), out.target);
+  ASSERT_TRUE(out.depthStencil);
+  EXPECT_EQ(out.depthStencil->width, 8);
+  EXPECT_EQ(device.depthStencilSurface(), out.depthStencil);
+
+  EXPECT_EQ(device.getRenderState(d3d::RS_SRCBLEND), uint32_t(d3d::BLEND_INVSRCALPHA));
+  EXPECT_EQ(device.getRenderState(d3d::RS_FOGEND), floatBits(0.75f));
+  EXPECT_EQ(device.getTextureStageState(1, d3d::TSS_ALPHAOP), uint32_t(d3d::TOP_MODULATE2X));
+  EXPECT_EQ(device.getSamplerState(d3d::kVertexSampler0, d3d::SAMP_MAGFILTER), 2u);
+  const DeviceState& st = device.state();
+  ASSERT_TRUE(st.textures[3]);
+  EXPECT_EQ(colorToD3D(st.textures[3]->texel(0, 0, 1, 1)), 0xff00ff00u);
+  EXPECT_EQ(device.getTransform(d3d::TS_VIEW).m[3][2], 9.0f);
+  EXPECT_EQ(st.material.power, 8.0f);
+  EXPECT_EQ(st.lights[2].type, uint32_t(d3d::LIGHT_POINT));
+  EXPECT_EQ(st.lights[2].range, 10.0f);
+  EXPECT_TRUE(st.lightEnabled[2]);
+  EXPECT_FALSE(st.lightEnabled[5]);
+  EXPECT_EQ(st.viewport.x, 2);
+  EXPECT_EQ(st.viewport.height, 2);
+  EXPECT_EQ(st.scissor.right, 3);
+  EXPECT_EQ(st.vsConstF[10], (Vec4{1, 2, 3, 4}));
+  EXPECT_EQ(st.psConstI[1], (std::array<int, 4>{5, 6, 7, 8}));
+  EXPECT_TRUE(st.vsConstB[15]);
+  EXPECT_EQ(st.vertexShader, nullptr);
+}
+
+TEST(SceneRun, RunTimeErrorsNameTheLine) {
+  EXPECT_EQ(runError("clear 0xff000000\nvs <<END\nvs_1_1\nEND\n"),
+            "r.scene:2: error: vs: shader assembly is not supported yet");
+  EXPECT_EQ(runError("ps <<END\nps_2_0\nEND\n"),
+            "r.scene:1: error: ps: shader assembly is not supported yet");
+  std::string missing = runError("\nps file no/such/file.psh\n");
+  EXPECT_EQ(missing.rfind("r.scene:2: error: ps: cannot open shader file", 0), 0u) << missing;
+  CapsProfile small = testCaps();
+  small.maxTextureWidth = small.maxTextureHeight = 16;
+  std::string big = runError("texture t 2d A8R8G8B8 32 8 solid 0xff000000\n", small);
+  EXPECT_EQ(big.rfind("r.scene:1: error: texture: 32x8 exceeds MaxTextureWidth/Height 16x16 of "
+                      "caps profile test",
+                      0),
+            0u)
+      << big;
+  std::string nofile = runError("texture t 2d A8R8G8B8 2 2 file no-such-image.png\n");
+  EXPECT_EQ(nofile.rfind("r.scene:1: error: texture: ", 0), 0u) << nofile;
+}
+
+TEST(SceneRun, FileTexturePathIsRelativeToTheScene) {
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("refx-scene-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "img");
+  TexturePtr image = Texture::create2D(Format::A8R8G8B8, 2, 1);
+  image->setTexel(0, 0, 0, 0, 0, colorFromD3D(0xff112233));
+  image->setTexel(0, 0, 1, 0, 0, colorFromD3D(0xff445566));
+  savePNG(*image, (dir / "img" / "two.png").string());
+  SceneScript s = parseSceneScript("texture t 2d A8R8G8B8 2 1 file img/two.png\nsettex 0 t\n",
+                                   (dir / "x.scene").string());
+  Device device(testCaps());
+  runSceneScript(s, device);
+  ASSERT_TRUE(device.state().textures[0]);
+  EXPECT_EQ(colorToD3D(device.state().textures[0]->texel(0, 0, 1, 0)), 0xff445566u);
+  std::filesystem::remove_all(dir);
 }
