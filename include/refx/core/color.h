@@ -19,8 +19,10 @@ constexpr Color4 colorFromD3D(D3DColor c) {
 }
 
 // Round-to-nearest conversion of a [0,1] value to 8 bits (clamped).
+// NaN and negative values give 0.
 inline uint8_t unorm8(float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
+  v = v > 0.0f ? v : 0.0f;
+  v = v < 1.0f ? v : 1.0f;
   return static_cast<uint8_t>(v * 255.0f + 0.5f);
 }
 
