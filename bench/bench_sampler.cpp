@@ -1,6 +1,7 @@
 // Texture sampler throughput in samples per second (items_per_second).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -10,8 +11,6 @@
 namespace {
 
 using namespace refx;
-
-constexpr int kBatches = 1024;
 
 // A 256x256 A8R8G8B8 texture with noise texels.
 TexturePtr makeTexture(int levels) {
@@ -25,26 +24,36 @@ TexturePtr makeTexture(int levels) {
   return tex;
 }
 
-// Batches of four 2x2 quads at random places, each quad stepping `step` texels per pixel.
+// Coordinates of a 256x256-pixel screen area textured with `step` texels per pixel
+// (rotated a little so rows do not line up with texel rows), as the rasterizer hands
+// them over: 4x4 blocks of four 2x2 quads, lane = quad*4 + (y&1)*2 + (x&1).
 struct Coords {
   std::vector<float> u, v;
-  explicit Coords(float step) : u(kBatches * kBatchLanes), v(kBatches * kBatchLanes) {
+  Coords(float step, bool scattered) {
+    const int blocks = 64 * 64;
+    u.resize(blocks * kBatchLanes), v.resize(blocks * kBatchLanes);
+    const float c = std::cos(0.3f) * step / 256.0f, s = std::sin(0.3f) * step / 256.0f;
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> pos(-2.0f, 2.0f);
-    const float d = step / 256.0f;
-    for (int b = 0; b < kBatches; ++b)
-      for (int q = 0; q < 4; ++q) {
-        float u0 = pos(rng), v0 = pos(rng);
-        for (int k = 0; k < 4; ++k) {
-          u[b * kBatchLanes + q * 4 + k] = u0 + d * float(k & 1);
-          v[b * kBatchLanes + q * 4 + k] = v0 + d * float(k >> 1);
-        }
+    for (int b = 0; b < blocks; ++b) {
+      // scattered: every block somewhere else on the texture (cache-unfriendly)
+      const float u0 = scattered ? pos(rng) : 0.0f, v0 = scattered ? pos(rng) : 0.0f;
+      for (int lane = 0; lane < kBatchLanes; ++lane) {
+        const int q = lane / 4;
+        const int x = (b % 64) * 4 + (q & 1) * 2 + (lane & 1);
+        const int y = (b / 64) * 4 + (q >> 1) * 2 + ((lane >> 1) & 1);
+        const float px = scattered ? float(x % 4) : float(x), py = scattered ? float(y % 4) : float(y);
+        u[b * kBatchLanes + lane] = u0 + px * c - py * s;
+        v[b * kBatchLanes + lane] = v0 + px * s + py * c;
       }
+    }
   }
+  int batches() const { return int(u.size()) / kBatchLanes; }
 };
 
-void run(benchmark::State& state, const Texture& tex, const SamplerState& ss, float step) {
-  Coords c(step);
+void run(benchmark::State& state, const Texture& tex, const SamplerState& ss, float step,
+         bool scattered = false) {
+  Coords c(step, scattered);
   float out[4][kBatchLanes];
   int64_t samples = 0;
   int b = 0;
@@ -55,7 +64,7 @@ void run(benchmark::State& state, const Texture& tex, const SamplerState& ss, fl
     sampleTexture(tex, ss, req, out);
     benchmark::DoNotOptimize(out);
     benchmark::ClobberMemory();
-    b = (b + 1) % kBatches;
+    b = b + 1 == c.batches() ? 0 : b + 1;
     samples += kBatchLanes;
   }
   state.SetItemsProcessed(samples);
@@ -78,6 +87,15 @@ void BM_BilinearRGBA8Clamp(benchmark::State& state) {
 }
 BENCHMARK(BM_BilinearRGBA8Clamp);
 
+// Every 4x4 block at a random place: texel fetches mostly miss the L1 cache.
+void BM_BilinearRGBA8Scattered(benchmark::State& state) {
+  auto tex = makeTexture(1);
+  SamplerState ss;
+  ss.magFilter = ss.minFilter = TextureFilter::Linear;
+  run(state, *tex, ss, 1.0f, true);
+}
+BENCHMARK(BM_BilinearRGBA8Scattered);
+
 void BM_PointRGBA8(benchmark::State& state) {
   auto tex = makeTexture(1);
   SamplerState ss;
@@ -85,7 +103,7 @@ void BM_PointRGBA8(benchmark::State& state) {
 }
 BENCHMARK(BM_PointRGBA8);
 
-// Trilinear: quads step 1.5 texels, so every lane blends levels 0 and 1.
+// Trilinear: 1.5 texels per pixel, so every lane blends levels 0 and 1.
 void BM_TrilinearRGBA8(benchmark::State& state) {
   auto tex = makeTexture(0);
   SamplerState ss;

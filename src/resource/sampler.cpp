@@ -79,32 +79,35 @@ void faceDerivative(int face, const float d[3], const float dd[3], float& du, fl
 
 // ---------------------------------------------------------------- level of detail
 
-// rho: the longer of the two screen-space derivative vectors, in texels of level 0.
-float footprint(const Texture& tex, const float* const c[3], int lane, const float dx[3],
-                const float dy[3]) {
-  float a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
-  switch (tex.type()) {
-    case TextureType::Cube: {
+// The screen-space derivatives of the texture coordinates, in texels of level 0.
+struct Footprint {
+  TextureType type;
+  float size[3];  // level 0 width, height, depth (cube: face size)
+
+  explicit Footprint(const Texture& tex)
+      : type(tex.type()),
+        size{float(tex.width(0)), float(tex.height(0)),
+             tex.type() == TextureType::Volume ? float(tex.depth(0)) : 0.0f} {}
+
+  // λ before bias: log2 ρ, ρ = the longer of the two derivative vectors (lane's own
+  // coordinates c give the cube face the derivatives are projected on).
+  float lod(const float* const c[3], int lane, const float dx[3], const float dy[3]) const {
+    float a[3], b[3];
+    if (type == TextureType::Cube) {
       const float d[3] = {c[0][lane], c[1][lane], c[2][lane]};
       int face = selectCubeFace(d[0], d[1], d[2]);
       faceDerivative(face, d, dx, a[0], a[1]);
       faceDerivative(face, d, dy, b[0], b[1]);
-      float s = float(tex.width(0));
-      a[0] *= s, a[1] *= s, b[0] *= s, b[1] *= s;
-      break;
+      a[0] *= size[0], a[1] *= size[0], b[0] *= size[0], b[1] *= size[0];
+      a[2] = b[2] = 0;
+    } else {  // 2D (size[2] = 0) or volume
+      for (int i = 0; i < 3; ++i) a[i] = dx[i] * size[i], b[i] = dy[i] * size[i];
     }
-    case TextureType::Volume:
-      a[2] = dx[2] * float(tex.depth(0)), b[2] = dy[2] * float(tex.depth(0));
-      [[fallthrough]];
-    case TextureType::Texture2D:
-      a[0] = dx[0] * float(tex.width(0)), b[0] = dy[0] * float(tex.width(0));
-      a[1] = dx[1] * float(tex.height(0)), b[1] = dy[1] * float(tex.height(0));
-      break;
+    float la = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    float lb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
+    return 0.5f * std::log2(std::max(la, lb));  // log2 sqrt(ρ²)
   }
-  float la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  float lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-  return std::max(la, lb);
-}
+};
 
 // λ per lane. Derivatives/Bias: one value per 2x2 quad from its top-left, top-right
 // and bottom-left lanes (masked-off lanes still give coordinates), plus the lane's
@@ -112,6 +115,7 @@ float footprint(const Texture& tex, const float* const c[3], int lane, const flo
 void computeLambda(const Texture& tex, const SamplerState& st, const SampleRequest& req,
                    const float* const c[3], float lam[kLanes]) {
   const float* lod = req.lod ? req.lod : kZeros;
+  const Footprint fp(tex);
   switch (req.lodMode) {
     case LodMode::Explicit:
       for (int l = 0; l < kLanes; ++l) lam[l] = lod[l] + st.mipLodBias;
@@ -123,7 +127,7 @@ void computeLambda(const Texture& tex, const SamplerState& st, const SampleReque
           dx[i] = req.ddx[i] ? req.ddx[i][l] : 0.0f;
           dy[i] = req.ddy[i] ? req.ddy[i][l] : 0.0f;
         }
-        lam[l] = std::log2(footprint(tex, c, l, dx, dy)) + st.mipLodBias;
+        lam[l] = fp.lod(c, l, dx, dy) + st.mipLodBias;
       }
       return;
     }
@@ -139,7 +143,7 @@ void computeLambda(const Texture& tex, const SamplerState& st, const SampleReque
       dx[i] = c[i][tr] - c[i][tl];
       dy[i] = c[i][bl] - c[i][tl];
     }
-    float quad = std::log2(footprint(tex, c, tl, dx, dy)) + st.mipLodBias;
+    float quad = fp.lod(c, tl, dx, dy) + st.mipLodBias;
     for (int k = 0; k < 4; ++k) lam[tl + k] = quad + (perLaneBias ? lod[tl + k] : 0.0f);
   }
 }
@@ -401,8 +405,6 @@ void axisLanes(TextureAddress a, bool linear, const float* c, int n, int* i0, in
   }
 }
 
-bool fastAddress(TextureAddress a) { return a != TextureAddress::Border; }
-
 // Texel loads stay scalar: on current x86 cores they are faster than vpgatherdd.
 inline uint32_t scalarLoad(const uint32_t* texels, int i) {
   uint32_t v = texels[i];
@@ -458,6 +460,21 @@ void kernel2D(const SampleLevel& lv, TextureAddress au, TextureAddress av, bool 
 
 // ---------------------------------------------------------------- driver
 
+// Whether kernel2D can sample this level: 8-bit unorm texels, no sRGB, no BORDER.
+bool fastLevel(const SampleLevel& lv, const SamplerState& st, const TextureAddress addr[3]) {
+  return lv.unorm8 && !st.srgb && lv.width > 0 && lv.height > 0 &&
+         addr[0] != TextureAddress::Border &&
+         addr[1] != TextureAddress::Border && lv.depth == 1 &&
+         lv.rgba8.size() == size_t(lv.width) * size_t(lv.height);
+}
+
+// Lanes not asked for read 0.
+void clearLanes(float out[4][kLanes], uint32_t mask) {
+  for (int ch = 0; ch < 4; ++ch)
+    for (int l = 0; l < kLanes; ++l)
+      if (!(mask >> l & 1)) out[ch][l] = 0;
+}
+
 // Samples one pass (level[pass] of each lane in `todo`) into dst; lanes sharing face,
 // level and filter are sampled together.
 void samplePass(const Texture& tex, const SamplerState& st, const LanePlan& plan, int pass,
@@ -479,9 +496,7 @@ void samplePass(const Texture& tex, const SamplerState& st, const LanePlan& plan
 
     const SampleLevel& lv = tex.sampleLevel(f, level);
     if (lv.width <= 0 || lv.height <= 0 || lv.depth <= 0) continue;
-    if (allowFast && type != TextureType::Volume && lv.unorm8 && !st.srgb &&
-        fastAddress(addr[0]) && fastAddress(addr[1]) &&
-        lv.rgba8.size() == size_t(lv.width) * size_t(lv.height)) {
+    if (allowFast && type != TextureType::Volume && fastLevel(lv, st, addr)) {
       if (group == 0xffff) {
         kernel2D(lv, addr[0], addr[1], linear, cu, cv, dst);
       } else {
@@ -511,9 +526,22 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
                             validAddress(st.addressW)};
 
   // λ only matters when it picks a level or chooses between MAGFILTER and MINFILTER.
+  const bool needLambda =
+      st.mipFilter != TextureFilter::None || isLinear(st.magFilter) != isLinear(st.minFilter);
+  const uint32_t mask = req.laneMask;
+
+  // Common case: one 2D level, one filter for every lane.
+  if (!needLambda && type == TextureType::Texture2D && allowFast) {
+    const SampleLevel& lv = tex.sampleLevel(0, 0);
+    if (fastLevel(lv, st, addr)) {
+      kernel2D(lv, addr[0], addr[1], isLinear(st.magFilter), c[0], c[1], out);
+      if (mask != 0xffff) clearLanes(out, mask);
+      return;
+    }
+  }
+
   float lam[kLanes] = {};
-  if (st.mipFilter != TextureFilter::None || isLinear(st.magFilter) != isLinear(st.minFilter))
-    computeLambda(tex, st, req, c, lam);
+  if (needLambda) computeLambda(tex, st, req, c, lam);
   LanePlan plan;
   planLevels(tex, st, lam, plan);
 
@@ -533,7 +561,6 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
     addr[0] = addr[1] = TextureAddress::Clamp;
   }
 
-  const uint32_t mask = req.laneMask;
   samplePass(tex, st, plan, 0, mask, face, cu, cv, c[2], addr, allowFast, out);
 
   // MIPFILTER LINEAR: blend level[1] in by frac(λ).
@@ -550,11 +577,7 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
       }
   }
 
-  // Lanes not asked for read 0.
-  if (mask != 0xffff)
-    for (int ch = 0; ch < 4; ++ch)
-      for (int l = 0; l < kLanes; ++l)
-        if (!(mask >> l & 1)) out[ch][l] = 0;
+  if (mask != 0xffff) clearLanes(out, mask);
 }
 
 }  // namespace

@@ -512,6 +512,19 @@ TEST(CubeMap, MipFromFaceProjectedDerivatives) {
   for (int l = 0; l < N; ++l) b.u[l] *= 3, b.v[l] *= 3, b.w[l] *= 3;
   b.run(*tex, s, LodMode::Derivatives);
   EXPECT_FLOAT_EQ(b.out[0][0], levelRed(1));
+
+  // Gradients at (0.5, 0, 1): u = (rx/rz + 1)/2, du/drx = 1/(2rz), du/drz = -rx/(2rz²).
+  Batch g;
+  for (int l = 0; l < N; ++l) g.u[l] = 0.5f, g.w[l] = 1.0f;
+  g.ddx[0][0] = 0.5f;  // du = 0.25 = 2 texels: λ = 1
+  g.ddx[2][1] = 1.0f;  // du = -0.25 = 2 texels: λ = 1
+  g.ddx[2][2] = 0.5f;  // du = -0.125 = 1 texel: λ = 0
+  g.ddx[0][3] = 2.0f;  // du = 1 = 8 texels: λ = 3
+  g.run(*tex, s, LodMode::Gradients);
+  EXPECT_FLOAT_EQ(g.out[0][0], levelRed(1));
+  EXPECT_FLOAT_EQ(g.out[0][1], levelRed(1));
+  EXPECT_FLOAT_EQ(g.out[0][2], levelRed(0));
+  EXPECT_FLOAT_EQ(g.out[0][3], levelRed(3));
 }
 
 // ---------------------------------------------------------------- volumes

@@ -27,6 +27,8 @@ struct SamplerState {
   bool srgb = false;
 };
 
+// Cube maps: direction derivatives are projected on the face of the quad's top-left
+// lane (per lane for Gradients), d(u,v) = chain rule of u = (sc/|ma| + 1)/2.
 enum class LodMode {
   Derivatives,  // λ from the 2x2 quad's coordinate differences (+ bias); pixel shaders
   Bias,         // derivatives + per-lane bias in `lod` (texldb)
