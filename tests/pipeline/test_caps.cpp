@@ -85,7 +85,9 @@ TEST(Caps, G400HasBumpEnvMap) {
   EXPECT_NE(caps.textureOpCaps & kOpBumpEnvMap, 0u);
   EXPECT_NE(caps.textureOpCaps & kOpBumpEnvMapLuminance, 0u);
   EXPECT_EQ(caps.textureOpCaps & kOpDotProduct3, 0u);
-  EXPECT_EQ(caps.maxSimultaneousTextures, 2u);
+  // Base + bump + environment map in one pass, as the seeds' DX6 listing needs.
+  EXPECT_EQ(caps.maxTextureBlendStages, 3u);
+  EXPECT_EQ(caps.maxSimultaneousTextures, 3u);
 }
 
 TEST(Caps, Dx7HasDot3SubtractHardwareTnLAndCubeMaps) {

@@ -100,14 +100,19 @@ TEST(ValidateDevice, SimultaneousTexturesAreLimited) {
 
 TEST(ValidateDevice, BumpStageCountsItsTexture) {
   // Base texture, bump map (stage 1 reads its own texture though no argument says
-  // TEXTURE), environment map: 3 textures, too many for the G400's 2.
+  // TEXTURE), environment map: 3 textures. The seeds' DX6 listing runs on the G400
+  // (3 textures); a 3-stage card with 2 texture units must reject it.
   DeviceState s;
   setStage(s, 0, TOP_MODULATE, TA_TEXTURE, TA_DIFFUSE);
   setStage(s, 1, TOP_BUMPENVMAP, TA_DIFFUSE, TA_CURRENT);
   setStage(s, 2, TOP_ADD, TA_TEXTURE, TA_CURRENT);
-  EXPECT_EQ(reason(s, "dx6-g400"),
-            "stage 2 is stage number 3 to use a texture but dx6-g400 has MaxSimultaneousTextures 2");
+  EXPECT_EQ(reason(s, "dx6-g400"), "ok");
   EXPECT_EQ(reason(s, "dx8"), "ok");
+  CapsProfile twoUnits = caps("dx6-g400");
+  twoUnits.name = "two-units";
+  twoUnits.maxSimultaneousTextures = 2;
+  ValidationResult r = validateDeviceState(s, twoUnits);
+  EXPECT_EQ(r.reason, "stage 2 is stage number 3 to use a texture but two-units has MaxSimultaneousTextures 2");
 }
 
 TEST(ValidateDevice, AlphaOpIsCheckedUnlessDisabled) {

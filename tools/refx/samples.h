@@ -1,0 +1,27 @@
+// Built-in samples: each renders one technique from the seeds on a device and says
+// which technique it chose for the active caps profile and why.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "refx/pipeline/device.h"
+
+namespace refx::samples {
+
+struct SampleResult {
+  std::string technique;   // technique actually rendered
+  std::string validation;  // "valid (1 pass)" or the reason the preferred technique failed
+  std::vector<std::string> notes;
+};
+
+struct Sample {
+  std::string name;   // file name stem, e.g. "dx6-bump-earth"
+  std::string title;  // one line for the gallery
+  std::string source; // where in the seeds it comes from
+  std::function<SampleResult(Device&)> render;  // device has target + depth attached, cleared
+};
+
+const std::vector<Sample>& allSamples();
+
+}  // namespace refx::samples
