@@ -31,7 +31,10 @@ int main(int argc, char** argv) {
     for (auto& [sub, action] : commands)
       if (sub->parsed()) return action();
   } catch (const refx::Error& e) {
-    std::fprintf(stderr, "refx: %s\n", e.what());
+    // Located errors already read "file:line: error: ..."; others get the prefix here.
+    const std::string what = e.what();
+    const bool located = what.find("error: ") != std::string::npos;
+    std::fprintf(stderr, "refx: %s%s\n", located ? "" : "error: ", what.c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "refx: error: %s\n", e.what());
