@@ -1,6 +1,7 @@
 // Caps profiles: data/caps/<name>.caps files of `Field = value` lines, fields named
 // after D3DCAPS9, flag values written with the D3D flag names (prefix optional).
 #include "refx/pipeline/caps.h"
+#include "refx/core/text.h"
 
 #include <cctype>
 #include <charconv>
@@ -201,14 +202,7 @@ const std::vector<Field>& fields() {
 
 // D3D9 calls MaxPixelShaderValue PixelShader1xMaxValue; both names are accepted.
 std::string_view canonicalFieldName(std::string_view key) {
-  auto eq = [](std::string_view a, std::string_view b) {
-    if (a.size() != b.size()) return false;
-    for (size_t i = 0; i < a.size(); ++i)
-      if (std::tolower(static_cast<unsigned char>(a[i])) !=
-          std::tolower(static_cast<unsigned char>(b[i])))
-        return false;
-    return true;
-  };
+  const auto eq = equalsNoCase;
   if (eq(key, "PixelShader1xMaxValue")) return "MaxPixelShaderValue";
   if (eq(key, "MaxSimultaneousRenderTargets")) return "NumSimultaneousRTs";
   for (const auto& f : fields())
@@ -219,30 +213,12 @@ std::string_view canonicalFieldName(std::string_view key) {
 // ---------------------------------------------------------------------------
 // Text helpers
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
-
-std::string upper(std::string_view s) {
-  std::string u(s);
-  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return u;
-}
+std::string upper(std::string_view s) { return toUpper(s); }
 
 std::optional<uint32_t> parseUint(std::string_view s) {
-  s = trim(s);
-  int base = 10;
-  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
-    s.remove_prefix(2);
-    base = 16;
-  }
-  if (s.empty()) return std::nullopt;
-  uint32_t v = 0;
-  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v, base);
-  if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
-  return v;
+  const auto v = parseUnsigned(trim(s));
+  if (!v || *v > UINT32_MAX) return std::nullopt;
+  return uint32_t(*v);
 }
 
 std::string flagNames(const FlagSet& set) {

@@ -4,6 +4,7 @@
 #include <span>
 
 #include "refx/pipeline/d3d9types.h"
+#include "refx/core/text.h"
 #include "refx/resource/format.h"
 
 namespace refx::d3d {
@@ -223,25 +224,6 @@ KindInfo kindInfo(EnumKind kind) {
     case EnumKind::Format: return {{}, "D3DFMT_", false};
   }
   return {{}, "", false};
-}
-
-bool equalsNoCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (std::toupper(static_cast<unsigned char>(a[i])) !=
-        std::toupper(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
-
-bool startsWithNoCase(std::string_view s, std::string_view prefix) {
-  return s.size() >= prefix.size() && equalsNoCase(s.substr(0, prefix.size()), prefix);
-}
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
 }
 
 std::optional<uint32_t> lookup(const KindInfo& info, std::string_view name) {

@@ -1,5 +1,6 @@
 // Scene script parser: text -> typed commands with every name and value resolved.
 #include "refx/pipeline/scene_script.h"
+#include "refx/core/text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -32,26 +33,7 @@ struct Token {
 
 bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && isBlank(s.front())) s.remove_prefix(1);
-  while (!s.empty() && isBlank(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-bool equalsNoCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) !=
-        std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
-
-std::string lower(std::string_view s) {
-  std::string r(s);
-  for (char& c : r) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return r;
-}
+std::string lower(std::string_view s) { return toLower(s); }
 
 std::vector<Token> tokenize(std::string_view code) {
   std::vector<Token> out;
@@ -76,18 +58,7 @@ std::optional<float> toFloat(std::string_view s) {
 }
 
 // Decimal or 0x hexadecimal, up to 64 bits.
-std::optional<uint64_t> toUint(std::string_view s) {
-  int base = 10;
-  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
-    s.remove_prefix(2);
-    base = 16;
-  }
-  if (s.empty()) return std::nullopt;
-  uint64_t v = 0;
-  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v, base);
-  if (ec != std::errc() || p != s.data() + s.size()) return std::nullopt;
-  return v;
-}
+std::optional<uint64_t> toUint(std::string_view s) { return parseUnsigned(s); }
 
 std::optional<int64_t> toInt(std::string_view s) {
   bool neg = false;
