@@ -101,10 +101,42 @@ float* destBase(BatchRegisters& regs, const Dst& d, int c) {
   }
 }
 
+// Sixteen lanes as two 8-lane values (GCC/Clang vector extensions): the arithmetic
+// below is vectorised whatever the compiler's loop heuristics decide, with the same
+// IEEE operations per lane as a plain loop.
+typedef float v8f __attribute__((vector_size(32)));
+struct V16 {
+  v8f lo, hi;
+};
+inline V16 load(const float* p) {
+  V16 r;
+  std::memcpy(&r.lo, p, sizeof r.lo);
+  std::memcpy(&r.hi, p + 8, sizeof r.hi);
+  return r;
+}
+inline void store(float* p, const V16& v) {
+  std::memcpy(p, &v.lo, sizeof v.lo);
+  std::memcpy(p + 8, &v.hi, sizeof v.hi);
+}
+template <class F>
+inline V16 lanes(F f) {
+  return V16{f(0), f(1)};
+}
+inline v8f part(const V16& v, int h) { return h ? v.hi : v.lo; }
+inline v8f splat8(float x) { return v8f{} + x; }
+inline v8f vmin(v8f a, v8f b) { return a < b ? a : b; }
+inline v8f vmax(v8f a, v8f b) { return a > b ? a : b; }
+
 void sample(const Instr& in, const Operand& coord, const ExecContext& ctx, uint16_t laneMask,
             float (*out)[N]) {
   alignas(64) float co[4][N];
-  for (int c = 0; c < 4; ++c) std::memcpy(co[c], coord.c[c], sizeof(co[c]));
+  const float(*cp)[N] = co;
+  // Coordinates read in place when they are one register's .xyzw.
+  const bool inPlace = in.op != Op::TexProj && coord.c[1] == coord.c[0] + N &&
+                       coord.c[2] == coord.c[0] + 2 * N && coord.c[3] == coord.c[0] + 3 * N;
+  if (inPlace) cp = reinterpret_cast<const float(*)[N]>(coord.c[0]);
+  else
+    for (int c = 0; c < 4; ++c) std::memcpy(co[c], coord.c[c], sizeof(co[c]));
   SampleMode mode = SampleMode::Implicit;
   switch (in.op) {
     case Op::TexProj:
@@ -122,42 +154,11 @@ void sample(const Instr& in, const Operand& coord, const ExecContext& ctx, uint1
   }
   if (in.sampler < ctx.samplerCount && ctx.samplers[in.sampler].sample) {
     const SamplerBinding& b = ctx.samplers[in.sampler];
-    b.sample(b.context, mode, co, laneMask, out);
+    b.sample(b.context, mode, cp, laneMask, out);
   } else {
     // Unbound sampler: D3D returns (0,0,0,1).
     for (int c = 0; c < 4; ++c)
       for (int l = 0; l < N; ++l) out[c][l] = c == 3 ? 1.0f : 0.0f;
-  }
-}
-
-template <class F>
-inline void map1(float* __restrict r, const float* __restrict a, F f) {
-  for (int l = 0; l < N; ++l) r[l] = f(a[l]);
-}
-template <class F>
-inline void map2(float* __restrict r, const float* __restrict a, const float* __restrict b, F f) {
-  for (int l = 0; l < N; ++l) r[l] = f(a[l], b[l]);
-}
-template <class F>
-inline void map3(float* __restrict r, const float* __restrict a, const float* __restrict b,
-                 const float* __restrict c, F f) {
-  for (int l = 0; l < N; ++l) r[l] = f(a[l], b[l], c[l]);
-}
-
-// Clamp with NaN -> lo (D3D saturates NaN to 0); written so it vectorises.
-inline void writeClamped(float* __restrict d, const float* __restrict r, float lo, float hi) {
-  for (int l = 0; l < N; ++l) {
-    const float v = r[l] > lo ? r[l] : lo;
-    d[l] = v < hi ? v : hi;
-  }
-}
-
-inline void writeScaledClamped(float* __restrict d, const float* __restrict r, float k, float lo,
-                               float hi) {
-  for (int l = 0; l < N; ++l) {
-    const float x = r[l] * k;
-    const float v = x > lo ? x : lo;
-    d[l] = v < hi ? v : hi;
   }
 }
 
@@ -173,46 +174,69 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
     Operand s[3];
     for (int i = 0; i < nsrc; ++i) fetch(in.src[i], regs, ctx, program, scratch[i], s[i]);
     const uint8_t mask = in.dst.mask;
+    // Lane-wise ops: f(h, a, b, c) on the 8-lane halves of each written component.
+    auto each1 = [&](auto&& f) {
+      for (int c = 0; c < 4; ++c)
+        if (mask & (1 << c)) {
+          const V16 a = load(s[0].c[c]);
+          store(res[c], lanes([&](int h) { return f(part(a, h)); }));
+        }
+    };
+    auto each2 = [&](auto&& f) {
+      for (int c = 0; c < 4; ++c)
+        if (mask & (1 << c)) {
+          const V16 a = load(s[0].c[c]), b = load(s[1].c[c]);
+          store(res[c], lanes([&](int h) { return f(part(a, h), part(b, h)); }));
+        }
+    };
+    auto each3 = [&](auto&& f) {
+      for (int c = 0; c < 4; ++c)
+        if (mask & (1 << c)) {
+          const V16 a = load(s[0].c[c]), b = load(s[1].c[c]), d = load(s[2].c[c]);
+          store(res[c], lanes([&](int h) { return f(part(a, h), part(b, h), part(d, h)); }));
+        }
+    };
     auto each = [&](auto&& f) {
       for (int c = 0; c < 4; ++c)
         if (mask & (1 << c)) f(c, res[c]);
     };
+    const v8f zero = splat8(0.0f), one = splat8(1.0f);
     switch (in.op) {
       case Op::Mov:
-        each([&](int c, float* r) { map1(r, s[0].c[c], [](float a) { return a; }); });
+        each1([](v8f a) { return a; });
         break;
       case Op::Add:
-        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a + b; }); });
+        each2([](v8f a, v8f b) { return a + b; });
         break;
       case Op::Sub:
-        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a - b; }); });
+        each2([](v8f a, v8f b) { return a - b; });
         break;
       case Op::Mul:
-        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a * b; }); });
+        each2([](v8f a, v8f b) { return a * b; });
         break;
       case Op::Mad:
-        each([&](int c, float* r) {
-          map3(r, s[0].c[c], s[1].c[c], s[2].c[c], [](float a, float b, float d) { return a * b + d; });
-        });
+        each3([](v8f a, v8f b, v8f d) { return a * b + d; });
         break;
       case Op::Dp3:
       case Op::Dp4:
       case Op::Dp2Add: {
-        float d[N];
-        for (int l = 0; l < N; ++l) d[l] = s[0].c[0][l] * s[1].c[0][l] + s[0].c[1][l] * s[1].c[1][l];
-        if (in.op == Op::Dp2Add) {
-          for (int l = 0; l < N; ++l) d[l] += s[2].c[0][l];
-        } else {
-          for (int l = 0; l < N; ++l) d[l] += s[0].c[2][l] * s[1].c[2][l];
-          if (in.op == Op::Dp4)
-            for (int l = 0; l < N; ++l) d[l] += s[0].c[3][l] * s[1].c[3][l];
-        }
-        each([&](int, float* r) { std::memcpy(r, d, sizeof(d)); });
+        V16 x[2][4];
+        const int comps = in.op == Op::Dp4 ? 4 : in.op == Op::Dp3 ? 3 : 2;
+        for (int k = 0; k < comps; ++k) x[0][k] = load(s[0].c[k]), x[1][k] = load(s[1].c[k]);
+        const V16 add = in.op == Op::Dp2Add ? load(s[2].c[0]) : V16{};
+        const V16 d = lanes([&](int h) {
+          v8f r = part(x[0][0], h) * part(x[1][0], h) + part(x[0][1], h) * part(x[1][1], h);
+          if (in.op == Op::Dp2Add) return r + part(add, h);
+          r += part(x[0][2], h) * part(x[1][2], h);
+          if (in.op == Op::Dp4) r += part(x[0][3], h) * part(x[1][3], h);
+          return r;
+        });
+        each([&](int, float* r) { store(r, d); });
         break;
       }
       case Op::Rcp:
         // D3D: rcp(0) = +inf; scalar op on the source's first (replicated) component.
-        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = 1.0f / s[0].c[c][l]; });
+        each1([&](v8f a) { return one / a; });
         break;
       case Op::Rsq:
         each([&](int c, float* r) {
@@ -220,16 +244,16 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
         });
         break;
       case Op::Min:
-        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a < b ? a : b; }); });
+        each2([](v8f a, v8f b) { return a < b ? a : b; });
         break;
       case Op::Max:
-        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a > b ? a : b; }); });
+        each2([](v8f a, v8f b) { return a > b ? a : b; });
         break;
       case Op::Slt:
-        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a < b ? 1.0f : 0.0f; }); });
+        each2([&](v8f a, v8f b) { return a < b ? one : zero; });
         break;
       case Op::Sge:
-        each([&](int c, float* r) { map2(r, s[0].c[c], s[1].c[c], [](float a, float b) { return a >= b ? 1.0f : 0.0f; }); });
+        each2([&](v8f a, v8f b) { return a >= b ? one : zero; });
         break;
       case Op::Frc:
         each([&](int c, float* r) {
@@ -251,16 +275,16 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
         });
         break;
       case Op::Lrp:
-        each([&](int c, float* r) { map3(r, s[0].c[c], s[1].c[c], s[2].c[c], [](float a, float b, float d) { return a * (b - d) + d; }); });
+        each3([](v8f a, v8f b, v8f d) { return a * (b - d) + d; });
         break;
       case Op::Cmp:
-        each([&](int c, float* r) { map3(r, s[0].c[c], s[1].c[c], s[2].c[c], [](float a, float b, float d) { return a >= 0.0f ? b : d; }); });
+        each3([&](v8f a, v8f b, v8f d) { return a >= zero ? b : d; });
         break;
       case Op::Cnd:
-        each([&](int c, float* r) { map3(r, s[0].c[c], s[1].c[c], s[2].c[c], [](float a, float b, float d) { return a > 0.5f ? b : d; }); });
+        each3([](v8f a, v8f b, v8f d) { return a > splat8(0.5f) ? b : d; });
         break;
       case Op::Abs:
-        each([&](int c, float* r) { map1(r, s[0].c[c], [](float a) { return std::fabs(a); }); });
+        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = std::fabs(s[0].c[c][l]); });
         break;
       case Op::Nrm: {
         float k[N];
@@ -290,22 +314,18 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
       }
     }
     // Result modifiers: shift, then saturate or clamp to the version's range.
-    const float scale = in.shift == 0 ? 1.0f : std::ldexp(1.0f, in.shift);
     const bool clampResult = in.saturate || in.clamp;
-    const float lo = in.saturate ? 0.0f : in.clampLo, hi = in.saturate ? 1.0f : in.clampHi;
+    const v8f scale = splat8(in.shift == 0 ? 1.0f : std::ldexp(1.0f, in.shift));
+    const v8f lo = splat8(in.saturate ? 0.0f : in.clampLo), hi = splat8(in.saturate ? 1.0f : in.clampHi);
     for (int c = 0; c < 4; ++c) {
       if (!(mask & (1 << c))) continue;
-      float* __restrict d = destBase(regs, in.dst, c);
+      float* d = destBase(regs, in.dst, c);
       if (!d) continue;
-      const float* __restrict r = res[c];
-      if (in.shift != 0) {
-        if (clampResult) writeScaledClamped(d, r, scale, lo, hi);
-        else for (int l = 0; l < N; ++l) d[l] = r[l] * scale;
-      } else if (clampResult) {
-        writeClamped(d, r, lo, hi);
-      } else {
-        std::memcpy(d, r, sizeof(float) * N);
-      }
+      V16 r = load(res[c]);
+      if (in.shift != 0) r = lanes([&](int h) { return part(r, h) * scale; });
+      // Clamp with NaN -> lo (D3D saturates NaN to 0).
+      if (clampResult) r = lanes([&](int h) { return vmin(vmax(part(r, h), lo), hi); });
+      store(d, r);
     }
   }
 }
