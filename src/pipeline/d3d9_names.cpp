@@ -188,6 +188,9 @@ constexpr NameValue kTextureTransformFlags[] = {
     {"COUNT3", TTFF_COUNT3}, {"COUNT4", TTFF_COUNT4}, {"PROJECTED", TTFF_PROJECTED}};
 constexpr NameValue kColorWrites[] = {
     {"RED", CW_RED}, {"GREEN", CW_GREEN}, {"BLUE", CW_BLUE}, {"ALPHA", CW_ALPHA}};
+// D3DWRAP_U/V/W and their D3DWRAPCOORD_0-3 aliases (same bits, plus COORD_3 = 8).
+constexpr NameValue kWraps[] = {{"U", 1}, {"V", 2}, {"W", 4}, {"COORD_0", 1},
+                                {"COORD_1", 2}, {"COORD_2", 4}, {"COORD_3", 8}};
 
 struct KindInfo {
   std::span<const NameValue> names;
@@ -222,6 +225,7 @@ KindInfo kindInfo(EnumKind kind) {
     case EnumKind::TextureTransformFlags: return {kTextureTransformFlags, "D3DTTFF_", true};
     case EnumKind::ColorWrite: return {kColorWrites, "D3DCOLORWRITEENABLE_", true};
     case EnumKind::Format: return {{}, "D3DFMT_", false};
+    case EnumKind::Wrap: return {kWraps, "D3DWRAP_", true};
   }
   return {{}, "", false};
 }
@@ -367,7 +371,10 @@ constexpr StateValue kSamplerStateValues[] = {
 StateValueInfo findValue(std::span<const StateValue> table, uint32_t state) {
   for (const StateValue& sv : table)
     if (sv.state == state) return sv.info;
-  return kUint;  // WRAPn and unknown states: a plain number
+  // D3DRS_WRAP0-7 (128-135) and WRAP8-15 (198-205): D3DWRAP_* flags.
+  if ((state >= RS_WRAP0 && state < RS_WRAP0 + 8) || (state >= RS_WRAP8 && state < RS_WRAP8 + 8))
+    return kFlags(EnumKind::Wrap);
+  return kUint;  // unknown states: a plain number
 }
 
 }  // namespace
