@@ -150,8 +150,12 @@ TEST(D3D9Names, StateValueKinds) {
   EXPECT_TRUE(is(renderStateValue(RS_BLENDFACTOR), ValueKind::Color));
   EXPECT_TRUE(is(renderStateValue(RS_STENCILREF), ValueKind::Uint));
   EXPECT_TRUE(is(renderStateValue(RS_ALPHAREF), ValueKind::Uint));
-  EXPECT_TRUE(is(renderStateValue(RS_WRAP0), ValueKind::Uint));
-  EXPECT_TRUE(is(renderStateValue(RS_WRAP0 + 3), ValueKind::Uint));
+  // RS_WRAPn take D3DWRAP_U (1) | D3DWRAP_V (2) | D3DWRAP_W (4) | D3DWRAPCOORD_3 (8).
+  EXPECT_TRUE(isEnum(renderStateValue(RS_WRAP0), ValueKind::Flags, EnumKind::Wrap));
+  EXPECT_TRUE(isEnum(renderStateValue(RS_WRAP0 + 3), ValueKind::Flags, EnumKind::Wrap));
+  EXPECT_TRUE(isEnum(renderStateValue(RS_WRAP8 + 7), ValueKind::Flags, EnumKind::Wrap));
+  EXPECT_EQ(parseEnum(EnumKind::Wrap, "U|V"), 3u);
+  EXPECT_EQ(parseEnum(EnumKind::Wrap, "D3DWRAP_W"), 4u);
 
   EXPECT_TRUE(isEnum(textureStageStateValue(TSS_COLOROP), ValueKind::Enum,
                      EnumKind::TextureOp));
