@@ -67,16 +67,21 @@ void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
     uint8_t* base = target_->data(0, 0);
     const size_t pitch = target_->rowPitch(0);
     for (int y = r.top; y < r.bottom; ++y)
-      for (int x = r.left; x < r.right; ++x) std::memcpy(base + y * pitch + x * 4, &color, 4);
+      std::fill_n(reinterpret_cast<uint32_t*>(base + y * pitch) + r.left, std::max(0, r.right - r.left),
+                  uint32_t(color));
     target_->markDirty();
   }
   if (depth_ && (flags & (CLEAR_ZBUFFER | CLEAR_STENCIL))) {
-    for (int y = r.top; y < std::min(r.bottom, depth_->height); ++y)
-      for (int x = r.left; x < std::min(r.right, depth_->width); ++x) {
-        size_t i = size_t(y) * depth_->width + x;
-        if (flags & CLEAR_ZBUFFER) depth_->depth[i] = std::clamp(z, 0.0f, 1.0f);
-        if (flags & CLEAR_STENCIL) depth_->stencil[i] = uint8_t(stencil);
-      }
+    const int x0 = r.left, x1 = std::min(r.right, depth_->width);
+    for (int y = r.top; y < std::min(r.bottom, depth_->height) && x0 < x1; ++y) {
+      const size_t row = size_t(y) * depth_->width;
+      if (flags & CLEAR_ZBUFFER)
+        std::fill(depth_->depth.begin() + row + x0, depth_->depth.begin() + row + x1,
+                  std::clamp(z, 0.0f, 1.0f));
+      if (flags & CLEAR_STENCIL)
+        std::fill(depth_->stencil.begin() + row + x0, depth_->stencil.begin() + row + x1,
+                  uint8_t(stencil));
+    }
   }
 }
 
