@@ -33,8 +33,44 @@ static bool compareU(uint32_t func, uint32_t a, uint32_t b) {
   }
 }
 
+typedef float v4f __attribute__((vector_size(16)));
+typedef int32_t v4i __attribute__((vector_size(16)));
+
+// Depth test of one row of a whole 4x4 batch: lanes q, q+1, q+4, q+5 (see core/batch.h).
+template <class Cmp>
+static uint16_t depthRows(const RasterDraw& d, int bx, int by, const float* z, bool writeDepth,
+                          Cmp cmp) {
+  uint16_t pass = 0;
+  for (int row = 0; row < 4; ++row) {
+    const int q = (row >> 1) * 8 + (row & 1) * 2;
+    float* dp = d.depth->depth.data() + size_t(by + row) * d.width + bx;
+    v4f old;
+    __builtin_memcpy(&old, dp, sizeof old);
+    const v4f nz{z[q], z[q + 1], z[q + 4], z[q + 5]};
+    const v4i ok = cmp(nz, old);
+    pass |= uint16_t(((ok[0] & 1) | (ok[1] & 2) | (ok[2] & 16) | (ok[3] & 32)) << q);
+    if (writeDepth) {
+      const v4f r = ok ? nz : old;
+      __builtin_memcpy(dp, &r, sizeof r);
+    }
+  }
+  return pass;
+}
+
 uint16_t earlyDepthTest(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z,
                         bool writeDepth) {
+  if (mask == 0xffff && bx + 4 <= d.width && by + 4 <= d.height) {
+    switch (d.depthFunc) {
+      case CMP_NEVER: return 0;
+      case CMP_LESS: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a < b; });
+      case CMP_EQUAL: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a == b; });
+      case CMP_LESSEQUAL: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a <= b; });
+      case CMP_GREATER: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a > b; });
+      case CMP_NOTEQUAL: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a != b; });
+      case CMP_GREATEREQUAL: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a >= b; });
+      default: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f) { return (a == a) | (a != a); });
+    }
+  }
   uint16_t pass = 0;
   for (int l = 0; l < kBatchLanes; ++l) {
     if (!(mask & (1 << l))) continue;

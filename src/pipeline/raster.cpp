@@ -90,35 +90,54 @@ struct TileWorker {
   alignas(64) float invW[N];
 };
 
-// value[l] = (base + dx*fx[l] + dy*fy[l]) * scale[l]
-inline void evalPlane(const float* __restrict pl, const float* __restrict fx,
-                      const float* __restrict fy, const float* __restrict scale,
-                      float* __restrict out) {
-  const float a = pl[0], dx = pl[1], dy = pl[2];
-  for (int l = 0; l < N; ++l) out[l] = (a + dx * fx[l] + dy * fy[l]) * scale[l];
+// Eight lanes as one value (GCC/Clang vector extensions): interpolation is vectorised
+// whatever the compiler's loop heuristics decide, with the same IEEE operations.
+typedef float v8f __attribute__((vector_size(32)));
+inline v8f load8(const float* p) {
+  v8f v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store8(float* p, v8f v) { std::memcpy(p, &v, sizeof v); }
+
+// value[l] = (base + dx*fx[l] + dy*fy[l]) * scale[l]; no scale: the same without the
+// multiply by one.
+inline void evalPlane(const float* pl, const v8f (&fx)[2], const v8f (&fy)[2],
+                      const v8f* scale, float* out) {
+  const v8f a = v8f{} + pl[0], dx = v8f{} + pl[1], dy = v8f{} + pl[2];
+  for (int h = 0; h < 2; ++h) {
+    v8f r = a + dx * fx[h] + dy * fy[h];
+    if (scale) r = r * scale[h];
+    store8(out + 8 * h, r);
+  }
 }
 
 void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_t mask,
                 TileWorker& w, uint64_t& shaded) {
   const float* pl = d.planes.data() + p.planeOffset;
-  alignas(64) float fx[N], fy[N], ones[N], wv[N];
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
-  for (int l = 0; l < N; ++l) {
-    fx[l] = ox + kLaneXf[l];
-    fy[l] = oy + kLaneYf[l];
-    ones[l] = 1.0f;
+  v8f fx[2], fy[2], wv[2];
+  for (int h = 0; h < 2; ++h) {
+    fx[h] = (v8f{} + ox) + load8(kLaneXf + 8 * h);
+    fy[h] = (v8f{} + oy) + load8(kLaneYf + 8 * h);
   }
-  evalPlane(pl, fx, fy, ones, w.invW);
-  evalPlane(pl + 3, fx, fy, ones, w.z);
-  for (int l = 0; l < N; ++l) w.z[l] = std::min(std::max(w.z[l], 0.0f), 1.0f);
+  evalPlane(pl, fx, fy, nullptr, w.invW);
+  evalPlane(pl + 3, fx, fy, nullptr, w.z);
+  const v8f zero{}, one = zero + 1.0f;
+  for (int h = 0; h < 2; ++h) {
+    // std::min(std::max(z, 0), 1): NaN stays NaN.
+    v8f z = load8(w.z + 8 * h);
+    z = z < zero ? zero : z;
+    store8(w.z + 8 * h, one < z ? one : z);
+  }
   if (d.earlyDepth) {
     mask = earlyDepthTest(d, bx, by, mask, w.z, d.depthWrite);
     if (!mask) return;
   }
-  for (int l = 0; l < N; ++l) wv[l] = 1.0f / w.invW[l];
+  for (int h = 0; h < 2; ++h) wv[h] = one / load8(w.invW + 8 * h);
   const float* ip = pl + 6;
   for (const InterpolatedInput& in : d.inputs) {
-    evalPlane(ip, fx, fy, in.flat ? ones : wv, w.regs.inputs[in.input].c[in.component]);
+    evalPlane(ip, fx, fy, in.flat ? nullptr : wv, w.regs.inputs[in.input].c[in.component]);
     ip += 3;
   }
   if (d.usesPosition) {
@@ -127,7 +146,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       pos.c[0][l] = float(bx + kLaneX[l]);
       pos.c[1][l] = float(by + kLaneY[l]);
       pos.c[2][l] = w.z[l];
-      pos.c[3][l] = wv[l];
+      pos.c[3][l] = wv[l / 8][l % 8];
     }
   }
   w.regs.laneMask = mask;
