@@ -163,6 +163,7 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
   const int tx = int(tile % bins.tilesX), ty = int(tile / bins.tilesX);
   const int x0 = tx * kTileSize, y0 = ty * kTileSize;
   const int x1 = std::min(x0 + kTileSize, d.width) - 1, y1 = std::min(y0 + kTileSize, d.height) - 1;
+  uint64_t count = 0;  // local: the per-thread counters share cache lines
   for (uint32_t pi : bins.lists[tile]) {
     const Primitive& p = d.prims[pi];
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
@@ -170,9 +171,10 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
     for (int by = minY; by <= maxY; by += 4)
       for (int bx = minX; bx <= maxX; bx += 4) {
         const uint16_t mask = coverage(p, bx, by);
-        if (mask) shadeBatch(d, p, bx, by, mask, w, shaded);
+        if (mask) shadeBatch(d, p, bx, by, mask, w, count);
       }
   }
+  shaded += count;
 }
 
 }  // namespace

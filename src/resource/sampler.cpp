@@ -608,10 +608,24 @@ bool sample2DUniform(const Texture& tex, const SamplerState& st, const float* co
     }
     const float la = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
     const float lb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
-    const float lam = 0.5f * std::log2(std::max(la, lb)) + st.mipLodBias;
-    const int linear = lam > 0 ? minLinear : magLinear;
-    const int level =
-        mipNone ? 0 : int(std::floor(clampFinite(lam, float(first), float(last)) + 0.5f));
+    const float m = std::max(la, lb);
+    int linear, level;
+    uint32_t bits;
+    std::memcpy(&bits, &m, sizeof bits);
+    const uint32_t mant = bits & 0x7fffff;
+    if (st.mipLodBias == 0.0f && bits - 0x00800000u < 0x7f000000u && mant >= 0x1000 &&
+        mant < 0x7ff000) {
+      // m = 2^e * (1 + f), f not within 2^-11 of 0 or 1: log2 m lies inside (e, e+1)
+      // by far more than log2f's error, so λ = log2(m)/2 is inside (e/2, (e+1)/2),
+      // λ > 0 iff e >= 0, and the nearest level is floor((e+1)/2), clamped.
+      const int e = int(bits >> 23) - 127;
+      linear = e >= 0 ? minLinear : magLinear;
+      level = mipNone ? 0 : std::clamp((e + 1) >> 1, first, last);
+    } else {
+      const float lam = 0.5f * std::log2(m) + st.mipLodBias;
+      linear = lam > 0 ? minLinear : magLinear;
+      level = mipNone ? 0 : int(std::floor(clampFinite(lam, float(first), float(last)) + 0.5f));
+    }
     const int k = (level << 1) | linear;
     if (key >= 0 && k != key) return false;
     key = k;

@@ -34,9 +34,9 @@ TEST(SamplerFastPaths, CoherentBatchesMatchReference) {
     s.minFilter = TextureFilter(1 + rng() % 2);
     s.mipFilter = TextureFilter(rng() % 2 ? 1 : 0);
     s.maxMipLevel = rng() % 2;
-    // A 4x4 block with a step of 1/64 .. 16/64 texels per pixel somewhere around
-    // [-2, 2]: λ from -6 to 2, one level for the block most of the time.
-    const float step = std::exp2(unit(rng) * 8 - 6) / 64.0f, rot = unit(rng) * 6.3f;
+    // A 4x4 block with 2^-6 .. 2^8 texels per pixel somewhere around [-2, 2]: λ from
+    // -6 to 8 (levels 0..6 and beyond), one level for the block most of the time.
+    const float step = std::exp2(unit(rng) * 14 - 6) / 64.0f, rot = unit(rng) * 6.3f;
     const float u0 = unit(rng) * 4 - 2, v0 = unit(rng) * 4 - 2;
     alignas(64) float u[N], v[N], w[N] = {};
     for (int l = 0; l < N; ++l) {
