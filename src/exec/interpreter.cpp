@@ -92,15 +92,6 @@ inline void fetch(const Src& s, const BatchRegisters& regs, const ExecContext& c
   }
 }
 
-float* destBase(BatchRegisters& regs, const Dst& d, int c) {
-  switch (d.file) {
-    case RegFile::Temp: return regs.temps[d.index].c[c];
-    case RegFile::Input: return regs.inputs[d.index].c[c];
-    case RegFile::Output: return regs.outputs[d.index].c[c];
-    default: return nullptr;
-  }
-}
-
 // Sixteen lanes as two 8-lane values (GCC/Clang vector extensions): the arithmetic
 // below is vectorised whatever the compiler's loop heuristics decide, with the same
 // IEEE operations per lane as a plain loop.
@@ -169,34 +160,66 @@ void BatchRegisters::resize(const Program& p) { BatchRegistersResize(*this, p); 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
   alignas(64) float scratch[3][4][N];
   alignas(64) float res[4][N];
+  // Source counts by op, looked up once.
+  static const std::array<uint8_t, 256> kSources = [] {
+    std::array<uint8_t, 256> t{};
+    for (int op = 0; op <= int(Op::Kill); ++op) t[op] = uint8_t(sourceCount(Op(op)));
+    return t;
+  }();
   for (const Instr& in : program.code) {
-    const int nsrc = sourceCount(in.op);
+    const int nsrc = kSources[uint8_t(in.op)];
     Operand s[3];
-    for (int i = 0; i < nsrc; ++i) fetch(in.src[i], regs, ctx, program, scratch[i], s[i]);
+    bool alias = false;  // the destination is also a source: stage results in res
+    for (int i = 0; i < nsrc; ++i) {
+      fetch(in.src[i], regs, ctx, program, scratch[i], s[i]);
+      alias |= in.src[i].file == in.dst.file && in.src[i].index == in.dst.index;
+    }
     const uint8_t mask = in.dst.mask;
+    LaneVec4* dstReg = in.dst.file == RegFile::Temp    ? &regs.temps[in.dst.index]
+                       : in.dst.file == RegFile::Input ? &regs.inputs[in.dst.index]
+                       : in.dst.file == RegFile::Output ? &regs.outputs[in.dst.index]
+                                                        : nullptr;
+    // Result modifiers: shift, then saturate or clamp to the version's range.
+    const bool clampResult = in.saturate || in.clamp;
+    const v8f scale = splat8(in.shift == 0 ? 1.0f : std::ldexp(1.0f, in.shift));
+    const v8f lo = splat8(in.saturate ? 0.0f : in.clampLo), hi = splat8(in.saturate ? 1.0f : in.clampHi);
+    auto modify = [&](V16 r) {
+      if (in.shift != 0) r = lanes([&](int h) { return part(r, h) * scale; });
+      // Clamp with NaN -> lo (D3D saturates NaN to 0).
+      if (clampResult) r = lanes([&](int h) { return vmin(vmax(part(r, h), lo), hi); });
+      return r;
+    };
+    // Without aliasing, results go straight to the destination.
+    const bool direct = !alias && dstReg;
+    auto emit = [&](int c, const V16& r) {
+      if (direct) store(dstReg->c[c], modify(r));
+      else store(res[c], r);
+    };
     // Lane-wise ops: f(h, a, b, c) on the 8-lane halves of each written component.
     auto each1 = [&](auto&& f) {
       for (int c = 0; c < 4; ++c)
         if (mask & (1 << c)) {
           const V16 a = load(s[0].c[c]);
-          store(res[c], lanes([&](int h) { return f(part(a, h)); }));
+          emit(c, lanes([&](int h) { return f(part(a, h)); }));
         }
     };
     auto each2 = [&](auto&& f) {
       for (int c = 0; c < 4; ++c)
         if (mask & (1 << c)) {
           const V16 a = load(s[0].c[c]), b = load(s[1].c[c]);
-          store(res[c], lanes([&](int h) { return f(part(a, h), part(b, h)); }));
+          emit(c, lanes([&](int h) { return f(part(a, h), part(b, h)); }));
         }
     };
     auto each3 = [&](auto&& f) {
       for (int c = 0; c < 4; ++c)
         if (mask & (1 << c)) {
           const V16 a = load(s[0].c[c]), b = load(s[1].c[c]), d = load(s[2].c[c]);
-          store(res[c], lanes([&](int h) { return f(part(a, h), part(b, h), part(d, h)); }));
+          emit(c, lanes([&](int h) { return f(part(a, h), part(b, h), part(d, h)); }));
         }
     };
-    auto each = [&](auto&& f) {
+    bool staged = !direct;  // results in res still to be stored
+    auto each = [&](auto&& f) {  // per-lane ops: always staged
+      staged = true;
       for (int c = 0; c < 4; ++c)
         if (mask & (1 << c)) f(c, res[c]);
     };
@@ -231,7 +254,8 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
           if (in.op == Op::Dp4) r += part(x[0][3], h) * part(x[1][3], h);
           return r;
         });
-        each([&](int, float* r) { store(r, d); });
+        for (int c = 0; c < 4; ++c)
+          if (mask & (1 << c)) emit(c, d);
         break;
       }
       case Op::Rcp:
@@ -300,7 +324,16 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
       case Op::TexProj:
       case Op::TexBias:
       case Op::TexLod:
+        if (direct && mask == 0xF && in.shift == 0 && !clampResult) {
+          sample(in, s[0], ctx, regs.laneMask, dstReg->c);
+          continue;
+        }
         sample(in, s[0], ctx, regs.laneMask, res);
+        if (direct) {
+          for (int c = 0; c < 4; ++c)
+            if (mask & (1 << c)) store(dstReg->c[c], modify(load(res[c])));
+          continue;
+        }
         break;
       case Op::Kill: {
         uint16_t killed = 0;
@@ -313,20 +346,10 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
         continue;  // no register result
       }
     }
-    // Result modifiers: shift, then saturate or clamp to the version's range.
-    const bool clampResult = in.saturate || in.clamp;
-    const v8f scale = splat8(in.shift == 0 ? 1.0f : std::ldexp(1.0f, in.shift));
-    const v8f lo = splat8(in.saturate ? 0.0f : in.clampLo), hi = splat8(in.saturate ? 1.0f : in.clampHi);
-    for (int c = 0; c < 4; ++c) {
-      if (!(mask & (1 << c))) continue;
-      float* d = destBase(regs, in.dst, c);
-      if (!d) continue;
-      V16 r = load(res[c]);
-      if (in.shift != 0) r = lanes([&](int h) { return part(r, h) * scale; });
-      // Clamp with NaN -> lo (D3D saturates NaN to 0).
-      if (clampResult) r = lanes([&](int h) { return vmin(vmax(part(r, h), lo), hi); });
-      store(d, r);
-    }
+    if (!dstReg || !staged) continue;
+    // Results staged in res (aliasing, or ops written per lane): modifiers and store.
+    for (int c = 0; c < 4; ++c)
+      if (mask & (1 << c)) store(dstReg->c[c], modify(load(res[c])));
   }
 }
 
