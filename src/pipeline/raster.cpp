@@ -54,12 +54,23 @@ uint16_t coverage(const Primitive& p, int bx, int by) {
     if (inside) {
       mask = 0xffff;
     } else {
-      for (int l = 0; l < N; ++l) {
-        const int64_t dx = kLaneX[l] * one, dy = kLaneY[l] * one;
-        bool in = true;
-        for (int k = 0; k < 3; ++k) in &= e0[k] + p.edgeA[k] * dx + p.edgeB[k] * dy > 0;
-        mask |= uint16_t(in) << l;
+      // Per lane, in doubles: every term is an integer below 2^53 (subpixel coordinates
+      // stay within the guard band), so the sums and their signs are exact.
+      typedef double v4d __attribute__((vector_size(32)));
+      typedef int64_t v4l __attribute__((vector_size(32)));
+      v4l in[4];
+      for (int g = 0; g < 4; ++g) in[g] = v4l{} - 1;
+      for (int k = 0; k < 3; ++k) {
+        const v4d e = v4d{} + double(e0[k]), a = v4d{} + double(p.edgeA[k] * one),
+                  b = v4d{} + double(p.edgeB[k] * one);
+        for (int g = 0; g < 4; ++g) {
+          v4d lx, ly;
+          for (int j = 0; j < 4; ++j) lx[j] = kLaneXf[4 * g + j], ly[j] = kLaneYf[4 * g + j];
+          in[g] &= (e + a * lx + b * ly) > 0.0;
+        }
       }
+      for (int g = 0; g < 4; ++g)
+        for (int j = 0; j < 4; ++j) mask |= uint16_t(in[g][j] & 1) << (4 * g + j);
     }
   } else if (p.kind == PrimKind::Line) {
     // One pixel per step along the major axis: the pixel whose centre is nearest
