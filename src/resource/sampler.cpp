@@ -598,17 +598,25 @@ bool sample2DUniform(const Texture& tex, const SamplerState& st, const float* co
   const bool mipNone = st.mipFilter == TextureFilter::None;
   const int last = tex.levelCount() - 1;
   const int first = int(std::min<uint32_t>(st.maxMipLevel, uint32_t(last)));
+  // ρ² of the four quads at once: lanes tl = 4q, tr = 4q+1, bl = 4q+2 gathered into
+  // one vector per corner; the same operations in the same order as Footprint::lod.
+  typedef float v4f __attribute__((vector_size(16)));
+  v4f la{}, lb{};
+  for (int i = 0; i < 3; ++i) {
+    v8f lo, hi;
+    std::memcpy(&lo, c[i], sizeof lo);
+    std::memcpy(&hi, c[i] + 8, sizeof hi);
+    const v4f tl = __builtin_shufflevector(lo, hi, 0, 4, 8, 12);
+    const v4f tr = __builtin_shufflevector(lo, hi, 1, 5, 9, 13);
+    const v4f bl = __builtin_shufflevector(lo, hi, 2, 6, 10, 14);
+    const v4f a = (tr - tl) * size[i], b = (bl - tl) * size[i];
+    la = i == 0 ? a * a : la + a * a;
+    lb = i == 0 ? b * b : lb + b * b;
+  }
+  const v4f ms = la < lb ? lb : la;  // std::max(la, lb)
   int key = -1;
   for (int q = 0; q < kLanes / 4; ++q) {
-    const int tl = q * 4, tr = tl + 1, bl = tl + 2;
-    float a[3], b[3];
-    for (int i = 0; i < 3; ++i) {
-      a[i] = (c[i][tr] - c[i][tl]) * size[i];
-      b[i] = (c[i][bl] - c[i][tl]) * size[i];
-    }
-    const float la = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-    const float lb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
-    const float m = std::max(la, lb);
+    const float m = ms[q];
     int linear, level;
     uint32_t bits;
     std::memcpy(&bits, &m, sizeof bits);
