@@ -157,16 +157,21 @@ void sample(const Instr& in, const Operand& coord, const ExecContext& ctx, uint1
 
 void BatchRegisters::resize(const Program& p) { BatchRegistersResize(*this, p); }
 
-void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+namespace {
+
+// Source counts by op, looked up once.
+const std::array<uint8_t, 256> kSources = [] {
+  std::array<uint8_t, 256> t{};
+  for (int op = 0; op <= int(Op::Kill); ++op) t[op] = uint8_t(sourceCount(Op(op)));
+  return t;
+}();
+
+// One instruction, decoded as it runs: the reference path for every op and operand.
+void executeInstr(const Instr& in, const Program& program, const ExecContext& ctx,
+                  BatchRegisters& regs) {
   alignas(64) float scratch[3][4][N];
   alignas(64) float res[4][N];
-  // Source counts by op, looked up once.
-  static const std::array<uint8_t, 256> kSources = [] {
-    std::array<uint8_t, 256> t{};
-    for (int op = 0; op <= int(Op::Kill); ++op) t[op] = uint8_t(sourceCount(Op(op)));
-    return t;
-  }();
-  for (const Instr& in : program.code) {
+  {
     const int nsrc = kSources[uint8_t(in.op)];
     Operand s[3];
     bool alias = false;  // the destination is also a source: stage results in res
@@ -326,13 +331,13 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
       case Op::TexLod:
         if (direct && mask == 0xF && in.shift == 0 && !clampResult) {
           sample(in, s[0], ctx, regs.laneMask, dstReg->c);
-          continue;
+          return;
         }
         sample(in, s[0], ctx, regs.laneMask, res);
         if (direct) {
           for (int c = 0; c < 4; ++c)
             if (mask & (1 << c)) store(dstReg->c[c], modify(load(res[c])));
-          continue;
+          return;
         }
         break;
       case Op::Kill: {
@@ -343,14 +348,213 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
             if (s[0].c[c][l] < 0.0f) killed |= uint16_t(1u << l);
         }
         regs.laneMask &= uint16_t(~killed);
-        continue;  // no register result
+        return;  // no register result
       }
     }
-    if (!dstReg || !staged) continue;
+    if (!dstReg || !staged) return;
     // Results staged in res (aliasing, or ops written per lane): modifiers and store.
     for (int c = 0; c < 4; ++c)
       if (mask & (1 << c)) store(dstReg->c[c], modify(load(res[c])));
   }
+}
+
+// ---------------------------------------------------------------- prepared programs
+
+struct Step;
+using StepFn = void (*)(const Step&, const ExecContext&, BatchRegisters&);
+
+// One instruction with its operands resolved to lane arrays.
+struct Step {
+  StepFn run;
+  const Instr* in;
+  const Program* program;
+  const float* src[3][4];  // per source and component (swizzle applied)
+  float* dst[4];           // written components, nullptr otherwise
+  float scale, lo, hi;     // result modifiers
+};
+
+// The reference path for ops and operands without a specialised routine.
+void runGeneric(const Step& s, const ExecContext& ctx, BatchRegisters& regs) {
+  executeInstr(*s.in, *s.program, ctx, regs);
+}
+
+template <Op O>
+inline V16 compute(const Step& s, int c) {
+  auto src = [&](int i) { return load(s.src[i][c]); };
+  auto dot = [&](int n) {
+    V16 a[4], b[4];
+    for (int k = 0; k < n; ++k) a[k] = load(s.src[0][k]), b[k] = load(s.src[1][k]);
+    return lanes([&](int h) {
+      v8f r = part(a[0], h) * part(b[0], h) + part(a[1], h) * part(b[1], h);
+      for (int k = 2; k < n; ++k) r += part(a[k], h) * part(b[k], h);
+      return r;
+    });
+  };
+  if constexpr (O == Op::Mov) return src(0);
+  else if constexpr (O == Op::Dp3) return dot(3);
+  else if constexpr (O == Op::Dp4) return dot(4);
+  else {
+    const V16 a = src(0), b = src(1);
+    if constexpr (O == Op::Add) return lanes([&](int h) { return part(a, h) + part(b, h); });
+    else if constexpr (O == Op::Sub) return lanes([&](int h) { return part(a, h) - part(b, h); });
+    else if constexpr (O == Op::Mul) return lanes([&](int h) { return part(a, h) * part(b, h); });
+    else if constexpr (O == Op::Min) return lanes([&](int h) { return vmin(part(a, h), part(b, h)); });
+    else if constexpr (O == Op::Max) return lanes([&](int h) { return vmax(part(a, h), part(b, h)); });
+    else {
+      const V16 d = src(2);
+      if constexpr (O == Op::Mad)
+        return lanes([&](int h) { return part(a, h) * part(b, h) + part(d, h); });
+      else if constexpr (O == Op::Lrp)
+        return lanes([&](int h) { return part(a, h) * (part(b, h) - part(d, h)) + part(d, h); });
+      else  // Cmp
+        return lanes([&](int h) { return part(a, h) >= splat8(0.0f) ? part(b, h) : part(d, h); });
+    }
+  }
+}
+
+// Same operations as executeInstr; all components are computed before any is
+// stored, so a destination that is also a source reads its old value.
+template <Op O, bool Shift, bool Clamp>
+void runArith(const Step& s, const ExecContext&, BatchRegisters&) {
+  V16 r[4];
+  for (int c = 0; c < 4; ++c)
+    if (s.dst[c]) r[c] = (O == Op::Dp3 || O == Op::Dp4) && c > 0 && s.dst[0] ? r[0] : compute<O>(s, c);
+  const v8f scale = splat8(s.scale), lo = splat8(s.lo), hi = splat8(s.hi);
+  for (int c = 0; c < 4; ++c) {
+    if (!s.dst[c]) continue;
+    V16 v = r[c];
+    if constexpr (Shift) v = lanes([&](int h) { return part(v, h) * scale; });
+    if constexpr (Clamp) v = lanes([&](int h) { return vmin(vmax(part(v, h), lo), hi); });
+    store(s.dst[c], v);
+  }
+}
+
+template <Op O>
+StepFn arith(bool shift, bool clamp) {
+  if (shift) return clamp ? runArith<O, true, true> : runArith<O, true, false>;
+  return clamp ? runArith<O, false, true> : runArith<O, false, false>;
+}
+
+StepFn arithFor(Op op, bool shift, bool clamp) {
+  switch (op) {
+    case Op::Mov: return arith<Op::Mov>(shift, clamp);
+    case Op::Add: return arith<Op::Add>(shift, clamp);
+    case Op::Sub: return arith<Op::Sub>(shift, clamp);
+    case Op::Mul: return arith<Op::Mul>(shift, clamp);
+    case Op::Mad: return arith<Op::Mad>(shift, clamp);
+    case Op::Min: return arith<Op::Min>(shift, clamp);
+    case Op::Max: return arith<Op::Max>(shift, clamp);
+    case Op::Lrp: return arith<Op::Lrp>(shift, clamp);
+    case Op::Cmp: return arith<Op::Cmp>(shift, clamp);
+    case Op::Dp3: return arith<Op::Dp3>(shift, clamp);
+    case Op::Dp4: return arith<Op::Dp4>(shift, clamp);
+    default: return nullptr;
+  }
+}
+
+// tex with .xyzw coordinates of one register, all four components written, no
+// result modifier and no overlap of coordinates and destination: the sampler reads
+// and writes the registers in place.
+void runTexInPlace(const Step& s, const ExecContext& ctx, BatchRegisters& regs) {
+  const SamplerBinding& b = ctx.samplers[s.in->sampler];
+  b.sample(b.context, SampleMode::Implicit, reinterpret_cast<const float(*)[N]>(s.src[0][0]),
+           regs.laneMask, reinterpret_cast<float(*)[N]>(s.dst[0]));
+}
+
+float* laneArray(BatchRegisters& regs, RegFile f, int index, int c) {
+  switch (f) {
+    case RegFile::Temp: return index < int(regs.temps.size()) ? regs.temps[index].c[c] : nullptr;
+    case RegFile::Input: return index < int(regs.inputs.size()) ? regs.inputs[index].c[c] : nullptr;
+    case RegFile::Output: return index < int(regs.outputs.size()) ? regs.outputs[index].c[c] : nullptr;
+    default: return nullptr;
+  }
+}
+
+}  // namespace
+
+struct PreparedProgram {
+  const Program* program = nullptr;
+  const Instr* code = nullptr;
+  size_t size = 0;
+  std::vector<Step> steps;
+  std::vector<LaneVec4> uniforms;  // constant and immediate operands, splat over the lanes
+};
+
+void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  auto pp = std::make_shared<PreparedProgram>();
+  pp->program = &program;
+  pp->code = program.code.data();
+  pp->size = program.code.size();
+  size_t uniformCount = 0;
+  for (const Instr& in : program.code)
+    for (int i = 0; i < kSources[uint8_t(in.op)]; ++i)
+      uniformCount += in.src[i].file == RegFile::Const || in.src[i].file == RegFile::Imm;
+  pp->uniforms.resize(uniformCount);
+  size_t nextUniform = 0;
+  for (const Instr& in : program.code) {
+    Step st{};
+    st.run = runGeneric;
+    st.in = &in;
+    st.program = &program;
+    pp->steps.push_back(st);
+    Step& s = pp->steps.back();
+    const int nsrc = kSources[uint8_t(in.op)];
+    bool resolved = true;
+    for (int i = 0; i < nsrc; ++i) {
+      const Src& src = in.src[i];
+      if (src.file == RegFile::Const || src.file == RegFile::Imm) {
+        // fetch() expands these per batch; the values are fixed for the draw.
+        LaneVec4& u = pp->uniforms[nextUniform++];
+        Vec4 v{0, 0, 0, 0};
+        if (src.file == RegFile::Imm) {
+          if (src.index < program.immediates.size()) v = program.immediates[src.index];
+        } else if (src.index < ctx.constantCount) {
+          v = ctx.constants[src.index];
+        }
+        for (int c = 0; c < 4; ++c) {
+          const float x = applyMod(v[(src.swizzle >> (2 * c)) & 3], src.mod);
+          for (int l = 0; l < N; ++l) u.c[c][l] = x;
+          s.src[i][c] = u.c[c];
+        }
+        continue;
+      }
+      if (src.mod != SrcMod::None) resolved = false;
+      for (int c = 0; c < 4; ++c) {
+        s.src[i][c] = laneArray(regs, src.file, src.index, (src.swizzle >> (2 * c)) & 3);
+        resolved &= s.src[i][c] != nullptr;
+      }
+    }
+    for (int c = 0; c < 4; ++c)
+      s.dst[c] = in.dst.mask >> c & 1 ? laneArray(regs, in.dst.file, in.dst.index, c) : nullptr;
+    const bool anyDst = s.dst[0] || s.dst[1] || s.dst[2] || s.dst[3];
+    const bool clamp = in.saturate || in.clamp;
+    s.scale = in.shift == 0 ? 1.0f : std::ldexp(1.0f, in.shift);
+    s.lo = in.saturate ? 0.0f : in.clampLo;
+    s.hi = in.saturate ? 1.0f : in.clampHi;
+    if (!resolved || !anyDst) continue;
+    if (StepFn f = arithFor(in.op, in.shift != 0, clamp)) {
+      s.run = f;
+    } else if (in.op == Op::Tex && in.dst.mask == 0xF && in.shift == 0 && !clamp &&
+               in.sampler < ctx.samplerCount && ctx.samplers[in.sampler].sample) {
+      const float* c0 = s.src[0][0];
+      const bool xyzw = s.src[0][1] == c0 + N && s.src[0][2] == c0 + 2 * N && s.src[0][3] == c0 + 3 * N;
+      const bool disjoint = c0 + 4 * N <= s.dst[0] || s.dst[0] + 4 * N <= c0;
+      if (xyzw && disjoint && s.dst[1] == s.dst[0] + N && s.dst[2] == s.dst[0] + 2 * N &&
+          s.dst[3] == s.dst[0] + 3 * N)
+        s.run = runTexInPlace;
+    }
+  }
+  regs.prepared = std::move(pp);
+}
+
+void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  const PreparedProgram* pp = regs.prepared.get();
+  if (pp && pp->program == &program && pp->code == program.code.data() &&
+      pp->size == program.code.size()) {
+    for (const Step& s : pp->steps) s.run(s, ctx, regs);
+    return;
+  }
+  for (const Instr& in : program.code) executeInstr(in, program, ctx, regs);
 }
 
 }  // namespace refx::exec

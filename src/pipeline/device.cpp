@@ -510,6 +510,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   exec::ExecContext vctx;
   vctx.constants = st.vsConstF.data();
   vctx.constantCount = int(st.vsConstF.size());
+  for (auto& r : vregs) exec::prepare(vprog, vctx, r);
   impl_->pool.parallelFor(batches, [&](size_t b, int thread) {
     exec::BatchRegisters& r = vregs[thread];
     const uint32_t first = lo + uint32_t(b) * kBatchLanes;

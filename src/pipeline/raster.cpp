@@ -203,6 +203,7 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
     w.regs.resize(*draw.pixelProgram);
     if (int(w.regs.inputs.size()) < kPixelInputCount) w.regs.inputs.resize(kPixelInputCount);
     for (auto& in : w.regs.inputs) std::memset(&in, 0, sizeof(in));
+    exec::prepare(*draw.pixelProgram, draw.execContext, w.regs);
   }
   std::vector<uint64_t> shaded(threads, 0);
   pool.parallelFor(busy.size(), [&](size_t i, int thread) {

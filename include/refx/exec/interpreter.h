@@ -2,6 +2,7 @@
 // instruction per batch; each instruction's body is a loop over the lanes.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "refx/core/batch.h"
@@ -30,13 +31,23 @@ struct ExecContext {
   int samplerCount = 0;
 };
 
+struct PreparedProgram;  // see prepare()
+
 // Register storage for one batch; sized for a program once and reused.
 struct BatchRegisters {
   std::vector<LaneVec4> temps, inputs, outputs;
   uint16_t laneMask = 0xffff;  // live lanes; Kill clears bits
+  std::shared_ptr<const PreparedProgram> prepared;  // set by prepare()
   void resize(const Program& p);
 };
 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs);
+
+// Decodes `program` once for these registers: operands resolved to lane arrays,
+// constants and immediates expanded, common ops bound to specialised routines.
+// execute() then runs the decoded form for this program; it stays valid while the
+// registers are not resized and the program, constants and samplers are unchanged.
+// The results are the same as without it.
+void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs);
 
 }  // namespace refx::exec
