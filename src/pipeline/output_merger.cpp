@@ -141,6 +141,7 @@ static inline uint8_t toUnorm8(float v) {
 typedef float v8f __attribute__((vector_size(32)));
 typedef int32_t v8i __attribute__((vector_size(32)));
 typedef uint32_t v4u __attribute__((vector_size(16)));
+typedef uint32_t v8u __attribute__((vector_size(32)));
 
 // Opaque writes with nothing but an (already done) depth test: convert the whole
 // batch to 8 bits at once and store the live lanes.
@@ -149,6 +150,7 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
   alignas(64) uint32_t packed[kBatchLanes];
   const v8f zero{}, one = zero + 1.0f, k255 = zero + 255.0f, half = zero + 0.5f;
   const v8i alphaOr = v8i{} + int32_t(d.colorHasAlpha ? 0u : 0xff000000u);
+  const bool whole = mask == 0xffff && bx + 4 <= d.width && by + 4 <= d.height;
   for (int k = 0; k < kBatchLanes; k += 8) {
     v8i q[4];
     for (int c = 0; c < 4; ++c) {
@@ -160,17 +162,18 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
       q[c] = __builtin_convertvector(v * k255 + half, v8i);
     }
     const v8i p = ((q[3] << 24) | alphaOr) | (q[0] << 16) | (q[1] << 8) | q[2];
-    __builtin_memcpy(packed + k, &p, sizeof p);
-  }
-  if (mask == 0xffff && bx + 4 <= d.width && by + 4 <= d.height) {
-    for (int row = 0; row < 4; ++row) {
-      const int q = (row >> 1) * 8 + (row & 1) * 2;  // lanes of this row: q, q+1, q+4, q+5
-      const v4u r{packed[q], packed[q + 1], packed[q + 4], packed[q + 5]};
-      __builtin_memcpy(reinterpret_cast<uint32_t*>(d.color + size_t(by + row) * d.colorPitch) + bx,
-                       &r, sizeof r);
+    if (whole) {
+      // Lanes k..k+7 are rows k/4 and k/4 + 1: lanes 0,1,4,5 and 2,3,6,7 of the half.
+      const v4u r0 = __builtin_shufflevector(v8u(p), v8u(p), 0, 1, 4, 5);
+      const v4u r1 = __builtin_shufflevector(v8u(p), v8u(p), 2, 3, 6, 7);
+      uint8_t* row = d.color + size_t(by + k / 4) * d.colorPitch + size_t(bx) * 4;
+      __builtin_memcpy(row, &r0, sizeof r0);
+      __builtin_memcpy(row + d.colorPitch, &r1, sizeof r1);
+    } else {
+      __builtin_memcpy(packed + k, &p, sizeof p);
     }
-    return;
   }
+  if (whole) return;
   for (int l = 0; l < kBatchLanes; ++l)
     if (mask & (1 << l))
       reinterpret_cast<uint32_t*>(d.color + size_t(by + kLaneY[l]) * d.colorPitch)[bx + kLaneX[l]] = packed[l];

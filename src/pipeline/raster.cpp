@@ -133,13 +133,15 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
     fy[h] = (v8f{} + oy) + load8(kLaneYf + 8 * h);
   }
   evalPlane(pl, fx, fy, nullptr, w.invW);
-  evalPlane(pl + 3, fx, fy, nullptr, w.z);
   const v8f zero{}, one = zero + 1.0f;
-  for (int h = 0; h < 2; ++h) {
-    // std::min(std::max(z, 0), 1): NaN stays NaN.
-    v8f z = load8(w.z + 8 * h);
-    z = z < zero ? zero : z;
-    store8(w.z + 8 * h, one < z ? one : z);
+  if (d.depthTest || d.usesPosition) {  // z is read by the depth test and vPos only
+    evalPlane(pl + 3, fx, fy, nullptr, w.z);
+    for (int h = 0; h < 2; ++h) {
+      // std::min(std::max(z, 0), 1): NaN stays NaN.
+      v8f z = load8(w.z + 8 * h);
+      z = z < zero ? zero : z;
+      store8(w.z + 8 * h, one < z ? one : z);
+    }
   }
   if (d.earlyDepth) {
     mask = earlyDepthTest(d, bx, by, mask, w.z, d.depthWrite);
