@@ -15,7 +15,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#if defined(__AVX2__)
+#if defined(__AVX__)
 #include <immintrin.h>
 #endif
 
@@ -345,8 +345,20 @@ inline v8f splat(float f) { return v8f{} + f; }
 inline v8f toFloat(v8i i) { return __builtin_convertvector(i, v8f); }
 inline v8f clampPosition(v8f x, float lo, float hi) {
   const v8f l = splat(lo), h = splat(hi);
+#if defined(__AVX__)
+  // vmaxps/vminps compute exactly x > l ? x : l and x < h ? x : h (NaN -> l).
+  __m256 m;
+  std::memcpy(&m, &x, sizeof m);
+  __m256 ml, mh;
+  std::memcpy(&ml, &l, sizeof ml);
+  std::memcpy(&mh, &h, sizeof mh);
+  m = _mm256_min_ps(_mm256_max_ps(m, ml), mh);
+  std::memcpy(&x, &m, sizeof x);
+  return x;
+#else
   x = x > l ? x : l;
   return x < h ? x : h;
+#endif
 }
 inline v8i floorInt(v8f x) {
   v8i i = __builtin_convertvector(x, v8i);
@@ -395,7 +407,9 @@ inline void axis8(const float* c, float fn, float off, float lo, float hi, int n
   u = clampPosition(u, -kCoordLimit, kCoordLimit);
   if constexpr (A == TextureAddress::Wrap) u = u - toFloat(floorInt(u));
   if constexpr (A == TextureAddress::Mirror) u = u - 2.0f * toFloat(floorInt(u * 0.5f));
-  v8f x = clampPosition(u * fn - off, lo, hi);
+  // WRAP: u is in [0, 1] here, so x lies inside [lo, hi] already.
+  v8f x = u * fn - off;
+  if constexpr (A != TextureAddress::Wrap) x = clampPosition(x, lo, hi);
   v8i i = floorInt(x);
   frac = x - toFloat(i);
   i0 = addressLanes<A>(i, n);
