@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "ff_pixel.h"
 #include "ff_vertex.h"
@@ -194,6 +195,7 @@ namespace {
 struct BoundSampler {
   const Texture* texture = nullptr;
   SamplerState state;
+  std::optional<PreparedSampler> prepared;  // texture and state checked once per draw
 };
 
 void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatchLanes],
@@ -216,7 +218,15 @@ void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatc
     req.lodMode = LodMode::Explicit;
     req.lod = co[3];
   }
-  sampleTexture(*b->texture, b->state, req, out);
+  if (b->prepared) b->prepared->sample(req, out);
+  else sampleTexture(*b->texture, b->state, req, out);
+}
+
+// Whether the program samples sampler s (only those are prepared).
+bool programSamples(const exec::Program& p, int s) {
+  for (const exec::Instr& in : p.code)
+    if (in.op >= exec::Op::Tex && in.op <= exec::Op::TexLod && in.sampler == s) return true;
+  return false;
 }
 
 SamplerState decodeSamplerState(const DeviceState& s, int i) {
@@ -537,6 +547,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   for (int s = 0; s < kMaxPixelSamplers; ++s) {
     bound[s].texture = st.textures[s].get();
     bound[s].state = decodeSamplerState(st, s);
+    if (bound[s].texture && programSamples(pprog, s)) bound[s].prepared.emplace(*bound[s].texture, bound[s].state);
     bindings[s].context = &bound[s];
     bindings[s].sample = sampleBound;
   }

@@ -602,16 +602,38 @@ void samplePass(const Texture& tex, const SamplerState& st, const LanePlan& plan
   }
 }
 
+// What the one-level 2D path needs to know about a texture and sampler state
+// (MIPFILTER NONE or POINT, λ from quad derivatives).
+struct Fast2D {
+  const Texture* tex;
+  const SamplerState* st;
+  TextureAddress addr[3];
+  float size[3];  // level 0 width, height, 0
+  int first, last, minLinear, magLinear;
+  bool mipNone;
+  const SampleLevel* const* levels = nullptr;  // per level, nullptr: not for the kernel
+  Kernel2D kernels[2] = {};                    // POINT, LINEAR; null: select per call
+
+  Fast2D(const Texture& t, const SamplerState& s, const TextureAddress a[3])
+      : tex(&t), st(&s), addr{a[0], a[1], a[2]},
+        size{float(t.width(0)), float(t.height(0)), 0.0f},
+        minLinear(isLinear(s.minFilter)), magLinear(isLinear(s.magFilter)),
+        mipNone(s.mipFilter == TextureFilter::None) {
+    last = t.levelCount() - 1;
+    first = int(std::min<uint32_t>(s.maxMipLevel, uint32_t(last)));
+  }
+};
+
 // λ per quad and the level it selects, with the operations of computeLambda and
 // planLevels for a 2D texture (MIPFILTER NONE or POINT); when all four quads agree,
 // samples the batch with one kernel call. Returns false to leave it to the general path.
-bool sample2DUniform(const Texture& tex, const SamplerState& st, const float* const c[3],
-                     const TextureAddress addr[3], uint32_t mask, float out[4][kLanes]) {
-  const float size[3] = {float(tex.width(0)), float(tex.height(0)), 0.0f};
-  const int magLinear = isLinear(st.magFilter), minLinear = isLinear(st.minFilter);
-  const bool mipNone = st.mipFilter == TextureFilter::None;
-  const int last = tex.levelCount() - 1;
-  const int first = int(std::min<uint32_t>(st.maxMipLevel, uint32_t(last)));
+bool sample2DUniform(const Fast2D& f, const float* const c[3], uint32_t mask,
+                     float out[4][kLanes]) {
+  const SamplerState& st = *f.st;
+  const int magLinear = f.magLinear, minLinear = f.minLinear;
+  const bool mipNone = f.mipNone;
+  const int last = f.last, first = f.first;
+  const float* size = f.size;
   // ρ² of the four quads at once: lanes tl = 4q, tr = 4q+1, bl = 4q+2 gathered into
   // one vector per corner; the same operations in the same order as Footprint::lod.
   typedef float v4f __attribute__((vector_size(16)));
@@ -652,9 +674,10 @@ bool sample2DUniform(const Texture& tex, const SamplerState& st, const float* co
     if (key >= 0 && k != key) return false;
     key = k;
   }
-  const SampleLevel& lv = tex.sampleLevel(0, key >> 1);
-  if (!fastLevel(lv, st, addr)) return false;
-  selectKernel2D(addr[0], addr[1], key & 1)(lv, c[0], c[1], out);
+  const SampleLevel* lv = f.levels ? f.levels[key >> 1] : &f.tex->sampleLevel(0, key >> 1);
+  if (!lv || (!f.levels && !fastLevel(*lv, st, f.addr))) return false;
+  const Kernel2D kernel = f.kernels[key & 1];
+  (kernel ? kernel : selectKernel2D(f.addr[0], f.addr[1], key & 1))(*lv, c[0], c[1], out);
   if (mask != 0xffff) clearLanes(out, mask);
   return true;
 }
@@ -685,7 +708,7 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
   // blending, and one level and filter for the whole batch.
   if (needLambda && type == TextureType::Texture2D && allowFast &&
       req.lodMode == LodMode::Derivatives && st.mipFilter != TextureFilter::Linear &&
-      sample2DUniform(tex, st, c, addr, mask, out))
+      sample2DUniform(Fast2D(tex, st, addr), c, mask, out))
     return;
 
   float lam[kLanes] = {};
@@ -744,6 +767,59 @@ int cubeFaceCoords(float x, float y, float z, float& u, float& v) {
 void sampleTexture(const Texture& tex, const SamplerState& state, const SampleRequest& req,
                    float out[4][kBatchLanes]) {
   sampleImpl(tex, state, req, out, true);
+}
+
+namespace {
+
+// PreparedSampler's plan: the 2D fast paths of sampleImpl with their per-call checks
+// done once.
+struct PreparedPlan {
+  SamplerState st;
+  std::vector<const SampleLevel*> levels;  // nullptr: level not for the kernel
+  Fast2D fast;
+  bool needLambda;
+  Kernel2D single = nullptr;  // no λ needed: kernel for level 0 (levels[0] set)
+
+  PreparedPlan(const Texture& tex, const SamplerState& state, const TextureAddress addr[3])
+      : st(state), fast(tex, st, addr) {
+    fast.st = &st;
+    for (int l = 0; l < tex.levelCount(); ++l) {
+      const SampleLevel& lv = tex.sampleLevel(0, l);
+      levels.push_back(fastLevel(lv, st, addr) ? &lv : nullptr);
+    }
+    fast.levels = levels.data();
+    fast.kernels[0] = selectKernel2D(addr[0], addr[1], false);
+    fast.kernels[1] = selectKernel2D(addr[0], addr[1], true);
+    needLambda =
+        st.mipFilter != TextureFilter::None || isLinear(st.magFilter) != isLinear(st.minFilter);
+    if (!needLambda && levels[0]) single = fast.kernels[isLinear(st.magFilter)];
+  }
+};
+
+}  // namespace
+
+PreparedSampler::PreparedSampler(const Texture& tex, const SamplerState& state)
+    : tex_(&tex), state_(state) {
+  const TextureAddress addr[3] = {validAddress(state.addressU), validAddress(state.addressV),
+                                  validAddress(state.addressW)};
+  if (tex.type() == TextureType::Texture2D && tex.levelCount() > 0)
+    plan_ = std::make_shared<const PreparedPlan>(tex, state, addr);
+}
+
+void PreparedSampler::sample(const SampleRequest& req, float out[4][kBatchLanes]) const {
+  if (const auto* p = static_cast<const PreparedPlan*>(plan_.get())) {
+    const float* c[3] = {req.u ? req.u : kZeros, req.v ? req.v : kZeros, req.w ? req.w : kZeros};
+    // The same choices as sampleImpl, in the same order.
+    if (p->single) {
+      p->single(*p->levels[0], c[0], c[1], out);
+      if (req.laneMask != 0xffff) clearLanes(out, req.laneMask);
+      return;
+    }
+    if (p->needLambda && req.lodMode == LodMode::Derivatives &&
+        p->st.mipFilter != TextureFilter::Linear && sample2DUniform(p->fast, c, req.laneMask, out))
+      return;
+  }
+  sampleImpl(*tex_, state_, req, out, true);
 }
 
 void sampleTextureReference(const Texture& tex, const SamplerState& state,

@@ -1,9 +1,10 @@
 // The specialised 2D kernels against the scalar reference on coherent screen-like
-// coordinates: whole batches on one mip level, paired-texel loads across row ends,
-// every addressing pair.
+// coordinates (whole batches on one mip level, paired-texel loads across row ends,
+// every addressing pair), and PreparedSampler against sampleTexture.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "refx/resource/sampler.h"
@@ -58,6 +59,63 @@ TEST(SamplerFastPaths, CoherentBatchesMatchReference) {
       }
   }
   EXPECT_EQ(compared, 4000 * 4 * N);
+}
+
+
+// A PreparedSampler gives what sampleTexture gives, for every kind of request.
+TEST(SamplerFastPaths, PreparedSamplerMatchesSampleTexture) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const TextureAddress modes[] = {TextureAddress::Wrap, TextureAddress::Mirror,
+                                  TextureAddress::Clamp, TextureAddress::MirrorOnce,
+                                  TextureAddress::Border};
+  const TexturePtr textures[] = {Texture::create2D(Format::A8R8G8B8, 64, 32, 0),
+                                 Texture::create2D(Format::A8R8G8B8, 16, 16, 1),
+                                 Texture::createCube(Format::A8R8G8B8, 8, 0),
+                                 Texture::create2D(Format::A32B32G32R32F, 8, 8, 0)};
+  for (const auto& tex : textures) {
+    for (int f = 0; f < tex->faceCount(); ++f)
+      for (int l = 0; l < tex->levelCount(); ++l) {
+        uint8_t* p = tex->data(f, l);
+        for (size_t i = 0; i < tex->dataSize(f, l); ++i) p[i] = uint8_t(rng());
+      }
+    tex->markDirty();
+  }
+  int compared = 0;
+  for (int iter = 0; iter < 2000; ++iter) {
+    const Texture& tex = *textures[iter % 4];
+    SamplerState s;
+    s.addressU = modes[rng() % 5];
+    s.addressV = modes[rng() % 5];
+    s.magFilter = TextureFilter(rng() % 3);
+    s.minFilter = TextureFilter(rng() % 3);
+    s.mipFilter = TextureFilter(rng() % 3);
+    s.maxMipLevel = rng() % 3;
+    s.mipLodBias = rng() % 2 ? 0.0f : unit(rng) * 2 - 1;
+    const PreparedSampler prepared(tex, s);
+    const float step = std::exp2(unit(rng) * 14 - 6) / 64.0f, u0 = unit(rng) * 4 - 2;
+    alignas(64) float u[N], v[N], w[N], lod[N];
+    for (int l = 0; l < N; ++l) {
+      const int q = l / 4;
+      u[l] = u0 + step * float((q & 1) * 2 + (l & 1)) + (iter % 3 == 0 ? unit(rng) : 0.0f);
+      v[l] = u0 + step * float((q >> 1) * 2 + ((l >> 1) & 1));
+      w[l] = unit(rng) * 2 - 1;
+      lod[l] = unit(rng) * 6 - 2;
+    }
+    SampleRequest req;
+    req.u = u, req.v = v, req.w = w, req.lod = lod;
+    req.lodMode = LodMode(rng() % 3);
+    req.laneMask = iter % 5 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+    float a[4][N], b[4][N];
+    sampleTexture(tex, s, req, a);
+    prepared.sample(req, b);
+    for (int ch = 0; ch < 4; ++ch)
+      for (int l = 0; l < N; ++l) {
+        ASSERT_EQ(std::memcmp(&a[ch][l], &b[ch][l], 4), 0) << "iter " << iter << " ch " << ch;
+        ++compared;
+      }
+  }
+  EXPECT_EQ(compared, 2000 * 4 * N);
 }
 
 }  // namespace

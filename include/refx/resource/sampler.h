@@ -2,6 +2,7 @@
 // filtering, mip selection from quad derivatives, cube face selection, border, sRGB.
 #pragma once
 #include <cstdint>
+#include <memory>
 
 #include "refx/core/batch.h"
 #include "refx/core/color.h"
@@ -51,6 +52,21 @@ struct SampleRequest {
 // out[channel][lane] = sampled (r,g,b,a) as the shader sees it.
 void sampleTexture(const Texture& tex, const SamplerState& state, const SampleRequest& req,
                    float out[4][kBatchLanes]);
+
+// A texture and sampler state prepared for many requests (one draw): the checks
+// sampleTexture makes per call (addressing, filters, which levels the vectorised
+// kernels can read and with which kernel) made once. sample() gives exactly what
+// sampleTexture gives. The texture must outlive it and not change meanwhile.
+class PreparedSampler {
+ public:
+  PreparedSampler(const Texture& tex, const SamplerState& state);
+  void sample(const SampleRequest& req, float out[4][kBatchLanes]) const;
+
+ private:
+  const Texture* tex_;
+  SamplerState state_;
+  std::shared_ptr<const void> plan_;  // one-level 2D plan when the state allows it
+};
 
 // Cube face selection: face index (D3DCUBEMAP_FACES) and (u,v) in [0,1] on that face.
 int cubeFaceCoords(float x, float y, float z, float& u, float& v);
