@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__SSE__)
+#include <immintrin.h>
+#endif
 
 namespace refx::pipeline {
 
@@ -36,20 +39,31 @@ static bool compareU(uint32_t func, uint32_t a, uint32_t b) {
 typedef float v4f __attribute__((vector_size(16)));
 typedef int32_t v4i __attribute__((vector_size(16)));
 
-// Depth test of one row of a whole 4x4 batch: lanes q, q+1, q+4, q+5 (see core/batch.h).
+// Depth test of the live lanes of a 4x4 batch inside the surface, row by row: row r
+// holds lanes q, q+1, q+4, q+5 with q = (r/2)*8 + (r%2)*2 (see core/batch.h).
 template <class Cmp>
-static uint16_t depthRows(const RasterDraw& d, int bx, int by, const float* z, bool writeDepth,
-                          Cmp cmp) {
+static uint16_t depthRows(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z,
+                          bool writeDepth, Cmp cmp) {
   uint16_t pass = 0;
+  const v4i laneBit{1, 2, 4, 8};
   for (int row = 0; row < 4; ++row) {
     const int q = (row >> 1) * 8 + (row & 1) * 2;
+    const int live = ((mask >> q) & 3) | (((mask >> (q + 4)) & 3) << 2);
+    if (!live) continue;
     float* dp = d.depth->depth.data() + size_t(by + row) * d.width + bx;
     v4f old;
     __builtin_memcpy(&old, dp, sizeof old);
     const v4f nz{z[q], z[q + 1], z[q + 4], z[q + 5]};
-    const v4i ok = cmp(nz, old);
-    pass |= uint16_t(((ok[0] & 1) | (ok[1] & 2) | (ok[2] & 16) | (ok[3] & 32)) << q);
-    if (writeDepth) {
+    const v4i ok = cmp(nz, old) & ((laneBit & live) != 0);
+#if defined(__SSE__)
+    __m128 okf;
+    __builtin_memcpy(&okf, &ok, sizeof okf);
+    const int bits = _mm_movemask_ps(okf);
+#else
+    const int bits = (ok[0] & 1) | (ok[1] & 2) | (ok[2] & 4) | (ok[3] & 8);
+#endif
+    pass |= uint16_t(((bits & 3) << q) | ((bits >> 2) << (q + 4)));
+    if (writeDepth && bits) {
       const v4f r = ok ? nz : old;
       __builtin_memcpy(dp, &r, sizeof r);
     }
@@ -59,16 +73,16 @@ static uint16_t depthRows(const RasterDraw& d, int bx, int by, const float* z, b
 
 uint16_t earlyDepthTest(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z,
                         bool writeDepth) {
-  if (mask == 0xffff && bx + 4 <= d.width && by + 4 <= d.height) {
+  if (bx + 4 <= d.width && by + 4 <= d.height) {
     switch (d.depthFunc) {
       case CMP_NEVER: return 0;
-      case CMP_LESS: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a < b; });
-      case CMP_EQUAL: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a == b; });
-      case CMP_LESSEQUAL: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a <= b; });
-      case CMP_GREATER: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a > b; });
-      case CMP_NOTEQUAL: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a != b; });
-      case CMP_GREATEREQUAL: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f b) { return a >= b; });
-      default: return depthRows(d, bx, by, z, writeDepth, [](v4f a, v4f) { return (a == a) | (a != a); });
+      case CMP_LESS: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a < b; });
+      case CMP_EQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a == b; });
+      case CMP_LESSEQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a <= b; });
+      case CMP_GREATER: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a > b; });
+      case CMP_NOTEQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a != b; });
+      case CMP_GREATEREQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a >= b; });
+      default: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f) { return (a == a) | (a != a); });
     }
   }
   uint16_t pass = 0;
