@@ -554,9 +554,16 @@ bool fastLevel(const SampleLevel& lv, const SamplerState& st, const TextureAddre
 
 // Lanes not asked for read 0.
 void clearLanes(float out[4][kLanes], uint32_t mask) {
-  for (int ch = 0; ch < 4; ++ch)
-    for (int l = 0; l < kLanes; ++l)
-      if (!(mask >> l & 1)) out[ch][l] = 0;
+  const v8i bit{1, 2, 4, 8, 16, 32, 64, 128};
+  for (int k = 0; k < kLanes; k += 8) {
+    const v8i live = (bit & int(mask >> k)) != 0;
+    for (int ch = 0; ch < 4; ++ch) {
+      v8f v;
+      std::memcpy(&v, out[ch] + k, sizeof v);
+      v = live ? v : v8f{};
+      std::memcpy(out[ch] + k, &v, sizeof v);
+    }
+  }
 }
 
 // Samples one pass (level[pass] of each lane in `todo`) into dst; lanes sharing face,
