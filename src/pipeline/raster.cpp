@@ -35,21 +35,38 @@ void bin(const RasterDraw& d, TileBins& bins) {
 alignas(64) constexpr float kLaneXf[N] = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
 alignas(64) constexpr float kLaneYf[N] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
 
-// Coverage of a 4x4 batch at (bx, by) by primitive p.
-uint16_t coverage(const Primitive& p, int bx, int by) {
+constexpr int64_t kOne = int64_t(1) << kSubPixelBits;
+
+// A triangle's edge functions stepped from block to block: E at a block's top-left
+// pixel centre and the extremes over its 4x4 pixel centres relative to it.
+struct EdgeWalk {
+  int64_t lo[3], hi[3];  // offsets of the block's minimum and maximum
+  int64_t stepX[3];      // E(bx + 4) - E(bx)
+
+  explicit EdgeWalk(const Primitive& p) {
+    for (int k = 0; k < 3; ++k) {
+      const int64_t ax = p.edgeA[k] * 3 * kOne, by3 = p.edgeB[k] * 3 * kOne;
+      lo[k] = std::min<int64_t>(ax, 0) + std::min<int64_t>(by3, 0);
+      hi[k] = std::max<int64_t>(ax, 0) + std::max<int64_t>(by3, 0);
+      stepX[k] = p.edgeA[k] * 4 * kOne;
+    }
+  }
+  static void at(const Primitive& p, int bx, int by, int64_t e[3]) {
+    for (int k = 0; k < 3; ++k)
+      e[k] = p.edgeA[k] * (bx * kOne) + p.edgeB[k] * (by * kOne) + p.edgeC[k] + p.edgeBias[k];
+  }
+};
+
+// Coverage of a 4x4 batch at (bx, by) by primitive p; for triangles e0 holds the
+// edge functions at (bx, by) (EdgeWalk::at).
+uint16_t coverage(const Primitive& p, const EdgeWalk& walk, const int64_t* e0, int bx, int by) {
   uint16_t mask = 0;
   if (p.kind == PrimKind::Triangle) {
-    constexpr int64_t one = int64_t(1) << kSubPixelBits;
-    int64_t e0[3];
+    constexpr int64_t one = kOne;
     bool inside = true;
     for (int k = 0; k < 3; ++k) {
-      e0[k] = p.edgeA[k] * (bx * one) + p.edgeB[k] * (by * one) + p.edgeC[k] + p.edgeBias[k];
-      // Extremes of the edge function over the block's pixel centres (offsets 0..3).
-      const int64_t ax = p.edgeA[k] * 3 * one, by3 = p.edgeB[k] * 3 * one;
-      const int64_t lo = e0[k] + std::min<int64_t>(ax, 0) + std::min<int64_t>(by3, 0);
-      const int64_t hi = e0[k] + std::max<int64_t>(ax, 0) + std::max<int64_t>(by3, 0);
-      if (hi <= 0) return 0;  // whole block outside this edge
-      inside &= lo > 0;
+      if (e0[k] + walk.hi[k] <= 0) return 0;  // whole block outside this edge
+      inside &= e0[k] + walk.lo[k] > 0;
     }
     if (inside) {
       mask = 0xffff;
@@ -181,11 +198,17 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
     const Primitive& p = d.prims[pi];
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
     const int maxX = std::min(p.maxX, x1), maxY = std::min(p.maxY, y1);
-    for (int by = minY; by <= maxY; by += 4)
+    const EdgeWalk walk(p);
+    const bool tri = p.kind == PrimKind::Triangle;
+    for (int by = minY; by <= maxY; by += 4) {
+      int64_t e[3] = {};
+      if (tri) EdgeWalk::at(p, minX, by, e);
       for (int bx = minX; bx <= maxX; bx += 4) {
-        const uint16_t mask = coverage(p, bx, by);
+        const uint16_t mask = coverage(p, walk, e, bx, by);
         if (mask) shadeBatch(d, p, bx, by, mask, w, count);
+        for (int k = 0; k < 3; ++k) e[k] += walk.stepX[k];
       }
+    }
   }
   shaded += count;
 }
