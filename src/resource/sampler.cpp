@@ -658,7 +658,27 @@ bool sample2DUniform(const Fast2D& f, const float* const c[3], uint32_t mask,
   }
   const v4f ms = la < lb ? lb : la;  // std::max(la, lb)
   int key = -1;
-  for (int q = 0; q < kLanes / 4; ++q) {
+  bool classified = false;
+  // All four quads at once when every ρ² has the exponent form (see below).
+  typedef uint32_t v4u __attribute__((vector_size(16)));
+  typedef int32_t v4i __attribute__((vector_size(16)));
+  v4u mbits;
+  std::memcpy(&mbits, &ms, sizeof mbits);
+  const v4u mmant = mbits & 0x7fffffu;
+  const v4i form = (mbits - 0x00800000u < 0x7f000000u) & (mmant >= 0x1000u) & (mmant < 0x7ff000u);
+  if (st.mipLodBias == 0.0f && form[0] && form[1] && form[2] && form[3]) {
+    const v4i e = v4i(mbits >> 23) - 127;
+    const v4i linear = e >= 0 ? v4i{} + minLinear : v4i{} + magLinear;
+    v4i level = (e + 1) >> 1;
+    level = level < first ? v4i{} + first : level;
+    level = level > last ? v4i{} + last : level;
+    if (mipNone) level = v4i{};
+    const v4i k = (level << 1) | linear;
+    if (k[1] != k[0] || k[2] != k[0] || k[3] != k[0]) return false;
+    key = k[0];
+    classified = true;
+  }
+  for (int q = 0; q < kLanes / 4 && !classified; ++q) {
     const float m = ms[q];
     int linear, level;
     uint32_t bits;
