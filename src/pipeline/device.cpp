@@ -63,27 +63,39 @@ static Rect activeRect(const DeviceState& s, int w, int h) {
 void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
   const int w = target_ ? target_->width() : (depth_ ? depth_->width : 0);
   const int h = target_ ? target_->height() : (depth_ ? depth_->height : 0);
-  Rect r = activeRect(state_, w, h);
-  if ((flags & CLEAR_TARGET) && target_) {
-    uint8_t* base = target_->data(0, 0);
-    const size_t pitch = target_->rowPitch(0);
-    for (int y = r.top; y < r.bottom; ++y)
-      std::fill_n(reinterpret_cast<uint32_t*>(base + y * pitch) + r.left, std::max(0, r.right - r.left),
-                  uint32_t(color));
-    target_->markDirty();
-  }
-  if (depth_ && (flags & (CLEAR_ZBUFFER | CLEAR_STENCIL))) {
-    const int x0 = r.left, x1 = std::min(r.right, depth_->width);
-    for (int y = r.top; y < std::min(r.bottom, depth_->height) && x0 < x1; ++y) {
+  const Rect r = activeRect(state_, w, h);
+  const bool target = (flags & CLEAR_TARGET) && target_;
+  const bool depth = depth_ && (flags & (CLEAR_ZBUFFER | CLEAR_STENCIL));
+  if (r.top >= r.bottom || r.left >= r.right || (!target && !depth)) return;
+  uint8_t* base = target ? target_->data(0, 0) : nullptr;
+  const size_t pitch = target ? target_->rowPitch(0) : 0;
+  const float zc = std::clamp(z, 0.0f, 1.0f);
+  auto rows = [&](int top, int bottom) {
+    for (int y = top; y < bottom; ++y) {
+      if (target)
+        std::fill_n(reinterpret_cast<uint32_t*>(base + y * pitch) + r.left, r.right - r.left,
+                    uint32_t(color));
+      const int x1 = depth ? std::min(r.right, depth_->width) : 0;
+      if (!depth || y >= depth_->height || r.left >= x1) continue;
       const size_t row = size_t(y) * depth_->width;
       if (flags & CLEAR_ZBUFFER)
-        std::fill(depth_->depth.begin() + row + x0, depth_->depth.begin() + row + x1,
-                  std::clamp(z, 0.0f, 1.0f));
+        std::fill(depth_->depth.begin() + row + r.left, depth_->depth.begin() + row + x1, zc);
       if (flags & CLEAR_STENCIL)
-        std::fill(depth_->stencil.begin() + row + x0, depth_->stencil.begin() + row + x1,
+        std::fill(depth_->stencil.begin() + row + r.left, depth_->stencil.begin() + row + x1,
                   uint8_t(stencil));
     }
-  }
+  };
+  // Large clears in bands of rows on all threads.
+  constexpr int kBand = 32;
+  const int bands = (r.bottom - r.top + kBand - 1) / kBand;
+  if (size_t(r.right - r.left) * size_t(r.bottom - r.top) >= (1u << 16) && bands > 1)
+    impl_->pool.parallelFor(size_t(bands), [&](size_t i, int) {
+      const int top = r.top + int(i) * kBand;
+      rows(top, std::min(top + kBand, r.bottom));
+    });
+  else
+    rows(r.top, r.bottom);
+  if (target) target_->markDirty();
 }
 
 void Device::setRenderState(RenderState s, uint32_t value) {
