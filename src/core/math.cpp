@@ -1,5 +1,7 @@
 #include "refx/core/math.h"
 
+#include <algorithm>
+
 namespace refx {
 
 Matrix operator*(const Matrix& a, const Matrix& b) {
@@ -154,6 +156,79 @@ Matrix matrixOrthoLH(float w, float h, float zn, float zf) {
   r.m[3][2] = zn / (zn - zf);
   r.m[3][3] = 1;
   return r;
+}
+
+Quaternion normalize(Quaternion q) {
+  float len = length(q);
+  if (!(len > 0)) return {0, 0, 0, 0};
+  float inv = 1.0f / len;
+  return {q.x * inv, q.y * inv, q.z * inv, q.w * inv};
+}
+
+Quaternion quaternionRotationAxis(Vec3 axis, float angle) {
+  Vec3 n = normalize(axis);
+  float s = std::sin(angle / 2);
+  return {n.x * s, n.y * s, n.z * s, std::cos(angle / 2)};
+}
+
+Quaternion multiply(Quaternion q1, Quaternion q2) {
+  // Hamilton product q2 * q1.
+  return {q2.w * q1.x + q2.x * q1.w + q2.y * q1.z - q2.z * q1.y,
+          q2.w * q1.y - q2.x * q1.z + q2.y * q1.w + q2.z * q1.x,
+          q2.w * q1.z + q2.x * q1.y - q2.y * q1.x + q2.z * q1.w,
+          q2.w * q1.w - q2.x * q1.x - q2.y * q1.y - q2.z * q1.z};
+}
+
+Quaternion slerp(Quaternion q1, Quaternion q2, float t) {
+  float d = dot(q1, q2), sign = 1;
+  if (d < 0) d = -d, sign = -1;
+  float a = 1 - t, b = t;
+  if (1 - d > 0.001f) {  // otherwise sin(theta) is too small to divide by
+    float theta = std::acos(d), st = std::sin(theta);
+    a = std::sin(theta * (1 - t)) / st;
+    b = std::sin(theta * t) / st;
+  }
+  b *= sign;
+  return {a * q1.x + b * q2.x, a * q1.y + b * q2.y, a * q1.z + b * q2.z, a * q1.w + b * q2.w};
+}
+
+Matrix matrixRotationQuaternion(Quaternion q) {
+  Matrix r = Matrix::identity();
+  r.m[0][0] = 1 - 2 * (q.y * q.y + q.z * q.z);
+  r.m[0][1] = 2 * (q.x * q.y + q.z * q.w);
+  r.m[0][2] = 2 * (q.x * q.z - q.y * q.w);
+  r.m[1][0] = 2 * (q.x * q.y - q.z * q.w);
+  r.m[1][1] = 1 - 2 * (q.x * q.x + q.z * q.z);
+  r.m[1][2] = 2 * (q.y * q.z + q.x * q.w);
+  r.m[2][0] = 2 * (q.x * q.z + q.y * q.w);
+  r.m[2][1] = 2 * (q.y * q.z - q.x * q.w);
+  r.m[2][2] = 1 - 2 * (q.x * q.x + q.y * q.y);
+  return r;
+}
+
+Quaternion quaternionRotationMatrix(const Matrix& mat) {
+  const auto& m = mat.m;
+  float trace = m[0][0] + m[1][1] + m[2][2] + 1;
+  Quaternion q;
+  if (trace > 1) {  // |w| > 1/2: divide by 4w
+    float s = 2 * std::sqrt(trace);
+    q = {(m[1][2] - m[2][1]) / s, (m[2][0] - m[0][2]) / s, (m[0][1] - m[1][0]) / s, 0.25f * s};
+  } else {  // divide by the largest of |x|, |y|, |z|
+    int i = 0;
+    if (m[1][1] > m[0][0]) i = 1;
+    if (m[2][2] > m[i][i]) i = 2;
+    if (i == 0) {
+      float s = 2 * std::sqrt(std::max(0.0f, 1 + m[0][0] - m[1][1] - m[2][2]));
+      q = {0.25f * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[1][2] - m[2][1]) / s};
+    } else if (i == 1) {
+      float s = 2 * std::sqrt(std::max(0.0f, 1 + m[1][1] - m[0][0] - m[2][2]));
+      q = {(m[0][1] + m[1][0]) / s, 0.25f * s, (m[1][2] + m[2][1]) / s, (m[2][0] - m[0][2]) / s};
+    } else {
+      float s = 2 * std::sqrt(std::max(0.0f, 1 + m[2][2] - m[0][0] - m[1][1]));
+      q = {(m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25f * s, (m[0][1] - m[1][0]) / s};
+    }
+  }
+  return q;
 }
 
 Vec3 transformCoord(Vec3 v, const Matrix& m) {

@@ -72,6 +72,36 @@ Matrix matrixLookAtLH(Vec3 eye, Vec3 at, Vec3 up);
 Matrix matrixPerspectiveFovLH(float fovy, float aspect, float zn, float zf);
 Matrix matrixOrthoLH(float w, float h, float zn, float zf);
 
+// D3DXQUATERNION: (x, y, z) = axis * sin(angle/2), w = cos(angle/2) for a unit quaternion.
+struct Quaternion {
+  float x = 0, y = 0, z = 0, w = 1;
+  constexpr Quaternion() = default;
+  constexpr Quaternion(float x_, float y_, float z_, float w_) : x(x_), y(y_), z(z_), w(w_) {}
+  static constexpr Quaternion identity() { return {0, 0, 0, 1}; }
+  constexpr bool operator==(const Quaternion&) const = default;
+};
+
+constexpr float dot(Quaternion a, Quaternion b) { return a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w; }
+inline float length(Quaternion q) { return std::sqrt(dot(q, q)); }
+// D3DXQuaternionNormalize; a zero quaternion stays zero.
+Quaternion normalize(Quaternion q);
+// D3DXQuaternionConjugate: (-x, -y, -z, w), the inverse rotation of a unit quaternion.
+constexpr Quaternion conjugate(Quaternion q) { return {-q.x, -q.y, -q.z, q.w}; }
+// D3DXQuaternionRotationAxis: rotation by `angle` about `axis` (normalized here), with
+// the handedness of matrixRotationAxis.
+Quaternion quaternionRotationAxis(Vec3 axis, float angle);
+// D3DXQuaternionMultiply(q1, q2): the rotation q1 followed by q2, i.e. the Hamilton
+// product q2 * q1, so matrixRotationQuaternion(multiply(q1, q2)) ==
+// matrixRotationQuaternion(q1) * matrixRotationQuaternion(q2) for row vectors.
+Quaternion multiply(Quaternion q1, Quaternion q2);
+// D3DXQuaternionSlerp: spherical interpolation from q1 (t = 0) to q2 (t = 1) along the
+// shorter arc (q2 is negated when dot(q1, q2) < 0); nearly equal inputs blend linearly.
+Quaternion slerp(Quaternion q1, Quaternion q2, float t);
+// D3DXMatrixRotationQuaternion (q is assumed unit length).
+Matrix matrixRotationQuaternion(Quaternion q);
+// D3DXQuaternionRotationMatrix: the unit quaternion of the rotation in the upper 3x3.
+Quaternion quaternionRotationMatrix(const Matrix& m);
+
 Vec3 transformCoord(Vec3 v, const Matrix& m);   // w-divided
 Vec3 transformNormal(Vec3 v, const Matrix& m);  // upper 3x3 only
 

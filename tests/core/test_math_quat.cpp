@@ -1,0 +1,163 @@
+// D3DX quaternion helpers, checked against rotations worked out by hand in D3DX's
+// row-vector, left-handed convention (d3dx-utilities.md §7), and the trackball.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "refx/core/math.h"
+#include "refx/d3dx/trackball.h"
+
+using namespace refx;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kEps = 1e-5f;
+
+void expectQuat(Quaternion q, float x, float y, float z, float w, float eps = kEps) {
+  EXPECT_NEAR(q.x, x, eps);
+  EXPECT_NEAR(q.y, y, eps);
+  EXPECT_NEAR(q.z, z, eps);
+  EXPECT_NEAR(q.w, w, eps);
+}
+
+void expectVec(Vec3 v, float x, float y, float z, float eps = kEps) {
+  EXPECT_NEAR(v.x, x, eps);
+  EXPECT_NEAR(v.y, y, eps);
+  EXPECT_NEAR(v.z, z, eps);
+}
+
+void expectMatrix(const Matrix& a, const Matrix& b, float eps = kEps) {
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) EXPECT_NEAR(a.m[i][j], b.m[i][j], eps) << "m[" << i << "][" << j << "]";
+}
+
+// Row vector times matrix, w = 0 (a direction).
+Vec3 rotate(Vec3 v, const Matrix& m) { return transformNormal(v, m); }
+
+}  // namespace
+
+TEST(Quaternion, RotationAxisIsHalfAngleSineAndCosine) {
+  // 90 degrees about y: (0, sin 45, 0, cos 45).
+  Quaternion q = quaternionRotationAxis({0, 2, 0}, kPi / 2);  // the axis is normalized
+  expectQuat(q, 0, 0.70710678f, 0, 0.70710678f);
+}
+
+TEST(Quaternion, NinetyDegreesAboutYTurnsXIntoMinusZ) {
+  // D3DX: row vector times matrix, left-handed. Row 1 of the quaternion matrix is
+  // (1 - 2(y²+z²), 2(xy + zw), 2(xz - yw)) = (1 - 1, 0, -2 * 0.5) = (0, 0, -1),
+  // so (1,0,0) -> (0,0,-1), the same as D3DXMatrixRotationY(90°) whose first row
+  // is (cos, 0, -sin).
+  Matrix m = matrixRotationQuaternion(quaternionRotationAxis({0, 1, 0}, kPi / 2));
+  expectVec(rotate({1, 0, 0}, m), 0, 0, -1);
+  expectMatrix(m, matrixRotationY(kPi / 2));
+}
+
+TEST(Quaternion, MatrixMatchesRotationAxis) {
+  Vec3 axis{1, -2, 0.5f};
+  for (float angle : {0.3f, 1.7f, -2.5f, 3.0f})
+    expectMatrix(matrixRotationQuaternion(quaternionRotationAxis(axis, angle)),
+                 matrixRotationAxis(axis, angle));
+}
+
+TEST(Quaternion, MultiplyAppliesTheFirstRotationFirst) {
+  // q1 = 90° about y, q2 = 90° about x; s = c = sqrt(1/2).
+  // multiply(q1, q2) = q2 * q1 (Hamilton):
+  //   x = w2 x1 + x2 w1 + y2 z1 - z2 y1 = s c = 1/2
+  //   y = w2 y1 - x2 z1 + y2 w1 + z2 x1 = c s = 1/2
+  //   z = w2 z1 + x2 y1 - y2 x1 + z2 w1 = s s = 1/2
+  //   w = w2 w1 - x2 x1 - y2 y1 - z2 z1 = c c = 1/2
+  Quaternion q1 = quaternionRotationAxis({0, 1, 0}, kPi / 2);
+  Quaternion q2 = quaternionRotationAxis({1, 0, 0}, kPi / 2);
+  Quaternion q = multiply(q1, q2);
+  expectQuat(q, 0.5f, 0.5f, 0.5f, 0.5f);
+  // (1,0,0) -> (0,0,-1) by q1, then by RotationX(90°) (rows (1,0,0), (0,c,s), (0,-s,c))
+  // (0,0,-1) -> -(row 3) = (0, s, -c) = (0, 1, 0).
+  expectVec(rotate({1, 0, 0}, matrixRotationQuaternion(q)), 0, 1, 0);
+  expectMatrix(matrixRotationQuaternion(q), matrixRotationQuaternion(q1) * matrixRotationQuaternion(q2));
+}
+
+TEST(Quaternion, NormalizeAndConjugate) {
+  expectQuat(normalize(Quaternion{0, 3, 0, 4}), 0, 0.6f, 0, 0.8f);  // |q| = 5
+  Quaternion q = quaternionRotationAxis({0, 0, 1}, 0.8f);
+  expectQuat(multiply(q, conjugate(q)), 0, 0, 0, 1);
+}
+
+TEST(Quaternion, SlerpHalfway) {
+  // Halfway from identity to 90° about y is 45° about y: (0, sin 22.5°, 0, cos 22.5°).
+  Quaternion a = Quaternion::identity(), b = quaternionRotationAxis({0, 1, 0}, kPi / 2);
+  expectQuat(slerp(a, b, 0.5f), 0, 0.38268343f, 0, 0.92387953f);
+  expectQuat(slerp(a, b, 0), 0, 0, 0, 1);
+  expectQuat(slerp(a, b, 1), b.x, b.y, b.z, b.w);
+  // -b is the same rotation; slerp takes the shorter arc and gives the same result.
+  Quaternion nb{-b.x, -b.y, -b.z, -b.w};
+  expectQuat(slerp(a, nb, 0.5f), 0, 0.38268343f, 0, 0.92387953f);
+  // A quarter of the way: 22.5° about y.
+  expectQuat(slerp(a, b, 0.25f), 0, std::sin(kPi / 16), 0, std::cos(kPi / 16));
+}
+
+TEST(Quaternion, MatrixRoundTrip) {
+  const Vec3 axes[] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {-0.3f, 0.8f, 0.2f}, {2, -1, 3}};
+  const float angles[] = {0.1f, 1.0f, 2.0f, 3.1f, kPi, -1.2f};
+  for (Vec3 axis : axes)
+    for (float angle : angles) {
+      Quaternion q = quaternionRotationAxis(axis, angle);
+      Quaternion r = quaternionRotationMatrix(matrixRotationQuaternion(q));
+      // q and -q are the same rotation.
+      float sign = dot(q, r) < 0 ? -1.0f : 1.0f;
+      expectQuat(r, sign * q.x, sign * q.y, sign * q.z, sign * q.w, 1e-4f);
+    }
+  // 180° about x: matrix diag(1, -1, -1); trace + 1 = 0 takes the largest-diagonal branch.
+  expectQuat(quaternionRotationMatrix(matrixRotationX(kPi)), 1, 0, 0, 0, 1e-4f);
+  // A matrix from the other helpers.
+  Matrix m = matrixRotationYawPitchRoll(0.4f, -0.7f, 1.1f);
+  expectMatrix(matrixRotationQuaternion(quaternionRotationMatrix(m)), m, 1e-5f);
+}
+
+TEST(Trackball, DragRightTurnsTheFrontToTheRight) {
+  // 200x200 window, ball radius = half the window. Centre (100,100) -> ball (0,0,1);
+  // (200,100): x = -(200-100)/100 = -1, y = 0, z = 0. The rotation takes (0,0,1) to
+  // (-1,0,0): the front point (0,0,-1) facing a camera at -z goes to (1,0,0), to the
+  // right. That is D3DXMatrixRotationY(-90°): rows (0,0,1), (0,1,0), (-1,0,0).
+  d3dx::Trackball ball(200, 200, 1.0f);
+  ball.begin(100, 100);
+  ball.drag(200, 100);
+  expectMatrix(ball.rotationMatrix(), matrixRotationY(-kPi / 2), 1e-5f);
+  expectVec(rotate({0, 0, -1}, ball.rotationMatrix()), 1, 0, 0);
+}
+
+TEST(Trackball, DragDownTurnsTheFrontDown) {
+  // (100,200): y = +1 -> ball (0,1,0); (0,0,1) -> (0,1,0) takes the front (0,0,-1) to
+  // (0,-1,0), down on the screen: D3DXMatrixRotationX(-90°).
+  d3dx::Trackball ball(200, 200, 1.0f);
+  ball.begin(100, 100);
+  ball.drag(100, 200);
+  expectMatrix(ball.rotationMatrix(), matrixRotationX(-kPi / 2), 1e-5f);
+}
+
+TEST(Trackball, PointUnderTheCursorFollowsIt) {
+  // The visible sphere point under pixel (px, py) of a W x H window with radius r:
+  // x = (px - W/2)/(r W/2), y = -(py - H/2)/(r H/2), z = -sqrt(1 - x² - y²).
+  const int w = 320, h = 240;
+  const float r = 0.9f;
+  auto visible = [&](float px, float py) {
+    float x = (px - w / 2.0f) / (r * w / 2.0f), y = -(py - h / 2.0f) / (r * h / 2.0f);
+    return Vec3{x, y, -std::sqrt(1 - x * x - y * y)};
+  };
+  d3dx::Trackball ball(w, h, r);
+  ball.begin(140, 100);
+  ball.drag(200, 150);
+  Vec3 moved = rotate(visible(140, 100), ball.rotationMatrix());
+  Vec3 want = visible(200, 150);
+  expectVec(moved, want.x, want.y, want.z, 1e-5f);
+  // A second drag continues from the first rotation.
+  Quaternion first = ball.rotation();
+  ball.end();
+  ball.drag(10, 10);  // no button: ignored
+  expectQuat(ball.rotation(), first.x, first.y, first.z, first.w);
+  ball.begin(160, 120);
+  ball.drag(160, 120);  // no motion: rotation unchanged
+  expectQuat(ball.rotation(), first.x, first.y, first.z, first.w, 1e-6f);
+  ball.reset();
+  expectQuat(ball.rotation(), 0, 0, 0, 1);
+}
