@@ -21,6 +21,9 @@ struct Device::Impl {
   explicit Impl(int threads) : pool(threads) {}
   ThreadPool pool;
   std::vector<ShadedVertex> vertices;
+  // A Clear not yet written: the next draw fills it tile by tile; anything else that
+  // may look at the surfaces writes it first (resolveClear).
+  RasterDraw::Fill pendingClear;
 };
 
 Device::Device(CapsProfile caps, DeviceOptions options)
@@ -29,8 +32,36 @@ Device::Device(CapsProfile caps, DeviceOptions options)
 Device::~Device() = default;
 
 void Device::setThreads(int threads) {
+  resolveClear();
   options_.threads = threads;
   impl_ = std::make_unique<Impl>(threads);
+}
+
+const TexturePtr& Device::renderTarget() const {
+  resolveClear();
+  return target_;
+}
+
+const DepthStencilPtr& Device::depthStencilSurface() const {
+  resolveClear();
+  return depth_;
+}
+
+void Device::resolveClear() const {
+  RasterDraw::Fill& f = impl_->pendingClear;
+  if (!f.color && !f.depth && !f.stencil) return;
+  const RasterDraw::Fill fill = f;
+  f = {};
+  uint8_t* color = fill.color ? target_->data(0, 0) : nullptr;
+  const int pitch = fill.color ? int(target_->rowPitch(0)) : 0;
+  const Rect& r = fill.rect;
+  constexpr int kBand = 32;
+  const int bands = (r.bottom - r.top + kBand - 1) / kBand;
+  impl_->pool.parallelFor(size_t(std::max(bands, 0)), [&](size_t i, int) {
+    const int top = r.top + int(i) * kBand;
+    applyFill(fill, color, pitch, depth_.get(), r.left, top, r.right, std::min(top + kBand, r.bottom));
+  });
+  if (fill.color) target_->markDirty();
 }
 
 void Device::setRenderTarget(TexturePtr target) {
@@ -38,6 +69,7 @@ void Device::setRenderTarget(TexturePtr target) {
                  (target->format() != Format::A8R8G8B8 && target->format() != Format::X8R8G8B8)))
     fail("render target must be a 2D A8R8G8B8 or X8R8G8B8 texture, got {}",
          formatName(target->format()));
+  resolveClear();
   target_ = std::move(target);
   if (target_) {
     state_.viewport = Viewport{0, 0, target_->width(), target_->height(), 0, 1};
@@ -45,7 +77,10 @@ void Device::setRenderTarget(TexturePtr target) {
   }
 }
 
-void Device::setDepthStencilSurface(DepthStencilPtr ds) { depth_ = std::move(ds); }
+void Device::setDepthStencilSurface(DepthStencilPtr ds) {
+  resolveClear();
+  depth_ = std::move(ds);
+}
 
 // The rectangle Clear and draws may touch: viewport ∩ target (∩ scissor when enabled).
 static Rect activeRect(const DeviceState& s, int w, int h) {
@@ -61,12 +96,31 @@ static Rect activeRect(const DeviceState& s, int w, int h) {
 }
 
 void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
+  resolveClear();
   const int w = target_ ? target_->width() : (depth_ ? depth_->width : 0);
   const int h = target_ ? target_->height() : (depth_ ? depth_->height : 0);
   const Rect r = activeRect(state_, w, h);
-  const bool target = (flags & CLEAR_TARGET) && target_;
-  const bool depth = depth_ && (flags & (CLEAR_ZBUFFER | CLEAR_STENCIL));
+  bool target = (flags & CLEAR_TARGET) && target_;
+  bool depth = depth_ && (flags & (CLEAR_ZBUFFER | CLEAR_STENCIL));
   if (r.top >= r.bottom || r.left >= r.right || (!target && !depth)) return;
+  // Deferred to the next draw when nothing but the device can see the surfaces (no
+  // other reference to them; the accessors resolve it) and depth matches the target.
+  RasterDraw::Fill& pending = impl_->pendingClear;
+  pending.rect = r;
+  if (target && target_.use_count() == 1) {
+    pending.color = true;
+    pending.colorValue = uint32_t(color);
+    target = false;
+  }
+  if (depth && target_ && depth_.use_count() == 1 && depth_->width == target_->width() &&
+      depth_->height == target_->height()) {
+    pending.depth = (flags & CLEAR_ZBUFFER) != 0;
+    pending.stencil = (flags & CLEAR_STENCIL) != 0;
+    pending.z = std::clamp(z, 0.0f, 1.0f);
+    pending.stencilValue = uint8_t(stencil);
+    depth = false;
+  }
+  if (!target && !depth) return;
   uint8_t* base = target ? target_->data(0, 0) : nullptr;
   const size_t pitch = target ? target_->rowPitch(0) : 0;
   const float zc = std::clamp(z, 0.0f, 1.0f);
@@ -747,6 +801,8 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
       break;
   }
   stats_.primitives += primitiveCount;
+  d.fill = impl_->pendingClear;
+  impl_->pendingClear = {};
   rasterize(d, impl_->pool);
   target_->markDirty();
 }

@@ -194,6 +194,7 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
   const int x0 = tx * kTileSize, y0 = ty * kTileSize;
   const int x1 = std::min(x0 + kTileSize, d.width) - 1, y1 = std::min(y0 + kTileSize, d.height) - 1;
   uint64_t count = 0;  // local: the per-thread counters share cache lines
+  applyFill(d.fill, d.color, d.colorPitch, d.depth, x0, y0, x1 + 1, y1 + 1);
   for (uint32_t pi : bins.lists[tile]) {
     const Primitive& p = d.prims[pi];
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
@@ -215,13 +216,29 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
 
 }  // namespace
 
+void applyFill(const RasterDraw::Fill& fill, uint8_t* color, int colorPitch,
+               DepthStencilSurface* depth, int x0, int y0, int x1, int y1) {
+  x0 = std::max(x0, fill.rect.left), y0 = std::max(y0, fill.rect.top);
+  x1 = std::min(x1, fill.rect.right), y1 = std::min(y1, fill.rect.bottom);
+  if (x0 >= x1 || y0 >= y1) return;
+  for (int y = y0; y < y1; ++y) {
+    if (fill.color)
+      std::fill_n(reinterpret_cast<uint32_t*>(color + size_t(y) * colorPitch) + x0, x1 - x0,
+                  fill.colorValue);
+    const size_t row = size_t(y) * depth->width;  // depth: same size as the target
+    if (fill.depth) std::fill_n(depth->depth.data() + row + x0, x1 - x0, fill.z);
+    if (fill.stencil) std::fill_n(depth->stencil.data() + row + x0, x1 - x0, fill.stencilValue);
+  }
+}
+
 void rasterize(RasterDraw& draw, ThreadPool& pool) {
-  if (draw.prims.empty()) return;
+  const bool fill = draw.fill.color || draw.fill.depth || draw.fill.stencil;
+  if (draw.prims.empty() && !fill) return;
   TileBins bins;
   bin(draw, bins);
   std::vector<size_t> busy;
   for (size_t t = 0; t < bins.lists.size(); ++t)
-    if (!bins.lists[t].empty()) busy.push_back(t);
+    if (fill || !bins.lists[t].empty()) busy.push_back(t);
   const int threads = pool.threadCount();
   std::vector<TileWorker> workers(threads);
   for (auto& w : workers) {

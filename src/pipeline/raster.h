@@ -84,7 +84,20 @@ struct RasterDraw {
   uint32_t depthFunc = 4;
   bool stencil = false;
   uint64_t* pixelsShaded = nullptr;  // per-thread counters (array of threadCount)
+  // A Clear deferred to this draw: each tile is filled right before it is shaded
+  // (tiles without primitives too), so the target is written once while in cache.
+  struct Fill {
+    bool color = false, depth = false, stencil = false;  // surfaces (depth: the z values)
+    Rect rect;                                             // inside the target
+    uint32_t colorValue = 0;
+    float z = 1.0f;
+    uint8_t stencilValue = 0;
+  } fill;
 };
+
+// Applies `fill` to the part of the target (and depth/stencil) inside [x0,x1)x[y0,y1).
+void applyFill(const RasterDraw::Fill& fill, uint8_t* color, int colorPitch,
+               DepthStencilSurface* depth, int x0, int y0, int x1, int y1);
 
 // Bins the draw's primitives and shades all tiles on the pool.
 void rasterize(RasterDraw& draw, ThreadPool& pool);

@@ -57,9 +57,10 @@ class Device {
   // Render target: level 0 of a 2D texture (A8R8G8B8 or X8R8G8B8). Setting it resets
   // the viewport to the whole target, as SetRenderTarget does.
   void setRenderTarget(TexturePtr target);
-  const TexturePtr& renderTarget() const { return target_; }
+  // The accessors write a pending (deferred) Clear first.
+  const TexturePtr& renderTarget() const;
   void setDepthStencilSurface(DepthStencilPtr ds);
-  const DepthStencilPtr& depthStencilSurface() const { return depth_; }
+  const DepthStencilPtr& depthStencilSurface() const;
 
   void clear(uint32_t flags, D3DColor color, float z, uint32_t stencil);
 
@@ -111,6 +112,7 @@ class Device {
   struct Impl;
   void draw(d3d::PrimitiveType type, uint32_t primitiveCount, int32_t baseVertex,
             const void* indices, bool index32, uint32_t vertexCount, uint32_t firstVertex);
+  void resolveClear() const;  // writes a Clear that was deferred to the next draw
 
   CapsProfile caps_;
   DeviceOptions options_;
