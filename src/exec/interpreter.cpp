@@ -114,7 +114,8 @@ inline V16 lanes(F f) {
   return V16{f(0), f(1)};
 }
 inline v8f part(const V16& v, int h) { return h ? v.hi : v.lo; }
-inline v8f splat8(float x) { return v8f{} + x; }
+// x in every lane (a broadcast: -0 stays -0, unlike 0 + x).
+inline v8f splat8(float x) { return v8f{x, x, x, x, x, x, x, x}; }
 inline v8f vmin(v8f a, v8f b) { return a < b ? a : b; }
 inline v8f vmax(v8f a, v8f b) { return a > b ? a : b; }
 

@@ -127,12 +127,14 @@ inline v8f load8(const float* p) {
   return v;
 }
 inline void store8(float* p, v8f v) { std::memcpy(p, &v, sizeof v); }
+// x in every lane (a broadcast: -0 stays -0, unlike 0 + x).
+inline v8f bcast(float x) { return v8f{x, x, x, x, x, x, x, x}; }
 
 // value[l] = (base + dx*fx[l] + dy*fy[l]) * scale[l]; no scale: the same without the
 // multiply by one.
 inline void evalPlane(const float* pl, const v8f (&fx)[2], const v8f (&fy)[2],
                       const v8f* scale, float* out) {
-  const v8f a = v8f{} + pl[0], dx = v8f{} + pl[1], dy = v8f{} + pl[2];
+  const v8f a = bcast(pl[0]), dx = bcast(pl[1]), dy = bcast(pl[2]);
   for (int h = 0; h < 2; ++h) {
     v8f r = a + dx * fx[h] + dy * fy[h];
     if (scale) r = r * scale[h];
@@ -146,8 +148,8 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
   v8f fx[2], fy[2], wv[2];
   for (int h = 0; h < 2; ++h) {
-    fx[h] = (v8f{} + ox) + load8(kLaneXf + 8 * h);
-    fy[h] = (v8f{} + oy) + load8(kLaneYf + 8 * h);
+    fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
+    fy[h] = bcast(oy) + load8(kLaneYf + 8 * h);
   }
   evalPlane(pl, fx, fy, nullptr, w.invW);
   const v8f zero{}, one = zero + 1.0f;

@@ -341,7 +341,7 @@ Color4 sampleScalar(const LevelReader& rd, const TextureAddress addr[3], bool li
 typedef float v8f __attribute__((vector_size(32)));
 typedef int v8i __attribute__((vector_size(32)));
 
-inline v8f splat(float f) { return v8f{} + f; }
+inline v8f splat(float f) { return v8f{f, f, f, f, f, f, f, f}; }
 inline v8f toFloat(v8i i) { return __builtin_convertvector(i, v8f); }
 inline v8f clampPosition(v8f x, float lo, float hi) {
   const v8f l = splat(lo), h = splat(hi);
