@@ -15,6 +15,7 @@ Action addCapsCommand(CLI::App& app);
 Action addReplayCommand(CLI::App& app);
 Action addGalleryCommand(CLI::App& app);
 Action addBenchCommand(CLI::App& app);
+Action addAssetCommand(CLI::App& app);
 
 // True when stderr is a terminal (progress display).
 bool stderrIsTerminal();
