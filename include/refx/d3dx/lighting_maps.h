@@ -65,8 +65,9 @@ struct OcclusionOptions {
   float bias = 1e-3f;           // ray origin offset along the normal, x mean edge length
 };
 // Uses the mesh's NORMAL element, or area-weighted face normals when it has none.
-// A bounding-volume hierarchy over the triangles keeps this fast (a 10k-triangle mesh
-// with 128 rays per vertex takes well under a second).
+// A bounding-volume hierarchy over the triangles keeps this fast: the teapot at
+// 13 x 13 quads per patch (10816 triangles, 6272 vertices, 128 rays each) takes about
+// half a second on one core.
 std::vector<float> computeHemisphereVisibility(const Mesh& mesh, const OcclusionOptions& options = {});
 
 // The unit directions used for `rays` rays in a frame whose z axis is the normal:
