@@ -111,6 +111,8 @@ Mesh cloneMeshFVF(const Mesh& mesh, uint32_t newFvf) {
   uint32_t n = mesh.vertexCount();
   Mesh out(newFvf, n, 0);
   out.indices = mesh.indices;
+  out.attributes = mesh.attributes;
+  out.materials = mesh.materials;
   auto copy = [&](int src, int dst, int bytes) {
     if (src < 0 || dst < 0) return;
     for (uint32_t i = 0; i < n; ++i)

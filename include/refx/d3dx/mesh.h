@@ -3,6 +3,7 @@
 // with tangents for per-pixel lighting samples.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "refx/core/color.h"
@@ -43,11 +44,26 @@ struct FVFLayout {
   static FVFLayout of(uint32_t fvf);
 };
 
+// A material of the attribute table, as a .x file's Material template holds it
+// (faceColor, power, specularColor, emissiveColor, TextureFilename).
+struct XMaterial {
+  Color4 diffuse{1, 1, 1, 1};
+  float power = 0;
+  Vec3 specular;
+  Vec3 emissive;
+  std::string textureFilename;  // empty: no texture
+  bool operator==(const XMaterial&) const = default;
+};
+
 struct Mesh {
   uint32_t fvf = 0;
   uint32_t stride = 0;
   std::vector<uint8_t> vertices;   // vertexCount() * stride bytes
   std::vector<uint32_t> indices;   // triangle list, clockwise front faces
+  // Attribute table: the attribute id (an index into `materials`) of each face;
+  // empty means every face has attribute 0.
+  std::vector<uint32_t> attributes;
+  std::vector<XMaterial> materials;
 
   Mesh() = default;
   // Zeroed vertices and indices for the given counts.
@@ -56,6 +72,7 @@ struct Mesh {
   uint32_t vertexCount() const { return stride ? uint32_t(vertices.size() / stride) : 0; }
   uint32_t faceCount() const { return uint32_t(indices.size() / 3); }
   FVFLayout layout() const { return FVFLayout::of(fvf); }
+  uint32_t attribute(uint32_t face) const { return face < attributes.size() ? attributes[face] : 0; }
 
   // Element access; throws refx::Error when the vertex or the element does not exist.
   Vec3 position(uint32_t i) const;
@@ -76,7 +93,7 @@ struct Mesh {
 
 // D3DXMESH::CloneMeshFVF: the same triangles with a new vertex layout. Elements
 // present in both layouts are copied (texture sets by index, the common components);
-// new elements are zero.
+// new elements are zero. The attribute table and the materials are kept.
 Mesh cloneMeshFVF(const Mesh& mesh, uint32_t newFvf);
 
 // D3DXCreateSphere: FVF XYZ | NORMAL, axis z (pole vertex (0,0,radius) first, then
