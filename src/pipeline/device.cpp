@@ -400,6 +400,13 @@ void addPlane(std::vector<float>& planes, double a0, double a1, double a2, doubl
   planes.push_back(float(dy));
 }
 
+// D3DRS_WRAPn: a wrapped coordinate takes the shorter way around the unit cylinder,
+// e.g. 0.9 -> 0.1 interpolates through 1.0 (0.9 -> 1.1), not back through 0.5.
+void wrapTowards(double base, double& v) {
+  const double shift = std::round(v - base);
+  v -= shift;
+}
+
 void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, const Rect& bounds,
                    bool flat) {
   constexpr double one = double(1 << kSubPixelBits);
@@ -451,7 +458,12 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
       continue;
     }
     double a[3];
-    for (int i = 0; i < 3; ++i) a[i] = double(sv[i].varyings[in.varying][in.component]) * sv[i].invW;
+    for (int i = 0; i < 3; ++i) a[i] = sv[i].varyings[in.varying][in.component];
+    if (in.wrap) {
+      wrapTowards(a[0], a[1]);
+      wrapTowards(a[0], a[2]);
+    }
+    for (int i = 0; i < 3; ++i) a[i] *= sv[i].invW;
     addPlane(d.planes, a[0], a[1], a[2], x1, y1, x2, y2, det);
   }
   d.prims.push_back(p);
@@ -491,8 +503,9 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
       plane(a.varyings[in.varying][in.component], a.varyings[in.varying][in.component]);
       continue;
     }
-    plane(double(a.varyings[in.varying][in.component]) * a.invW,
-          double(b.varyings[in.varying][in.component]) * b.invW);
+    double va = a.varyings[in.varying][in.component], vb = b.varyings[in.varying][in.component];
+    if (in.wrap) wrapTowards(va, vb);
+    plane(va * a.invW, vb * b.invW);
   }
   d.prims.push_back(p);
 }
@@ -635,14 +648,21 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     }
     const int vary = varyingForPixelInput(i);
     if (vary < 0) continue;
+    // D3DRS_WRAPn applies to texture coordinate n as the pixel stage receives it
+    // (vertex output oTn): bit c = component c (D3DWRAP_U, V, W, COORD_3).
+    const int texIndex = i - kPixelInTex0;
+    const uint32_t wrapBits =
+        texIndex >= 0 && texIndex < 8 ? st.rs(RenderState(RS_WRAP0 + texIndex)) : 0u;
     for (int c = 0; c < 4; ++c)
       if (used[i] & (1 << c))
         d.inputs.push_back(InterpolatedInput{uint8_t(i), uint8_t(c), uint8_t(vary),
-                                             flat && (i == kPixelInDiffuse || i == kPixelInSpecular)});
+                                             flat && (i == kPixelInDiffuse || i == kPixelInSpecular),
+                                             (wrapBits & (1u << c)) != 0});
   }
   d.color = target_->data(0, 0);
   d.colorPitch = int(target_->rowPitch(0));
   d.colorHasAlpha = target_->format() == Format::A8R8G8B8;
+  d.srgbWrite = st.rs(RS_SRGBWRITEENABLE) != 0;
   d.width = target_->width();
   d.height = target_->height();
   d.depth = depth_.get();

@@ -193,10 +193,16 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
       reinterpret_cast<uint32_t*>(d.color + size_t(by + kLaneY[l]) * d.colorPitch)[bx + kLaneX[l]] = packed[l];
 }
 
+// sRGB encoding of a linear value in [0,1] (IEC 61966-2-1).
+static float linearToSrgb(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
 void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask,
                 const float (*color)[kBatchLanes], const float* z, bool depthAlreadyTested, bool counterClockwise) {
   const DeviceState& st = *d.state;
-  if (!d.blend.enable && !d.alphaTest && !d.stencil && d.blend.writeMask == 0xf &&
+  if (!d.blend.enable && !d.alphaTest && !d.stencil && !d.srgbWrite && d.blend.writeMask == 0xf &&
       (!d.depthTest || depthAlreadyTested)) {
     storeOpaque(d, bx, by, mask, color);
     return;
@@ -254,6 +260,8 @@ void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask,
                        blendFactor(da, 3, src, dst, d.blend.factor));
       for (int c = 0; c < 4; ++c) src[c] = out[c];
     }
+    if (d.srgbWrite)  // the blended linear value is encoded on write; alpha stays linear
+      for (int c = 0; c < 3; ++c) src[c] = linearToSrgb(src[c]);
     if (wm & CW_RED) px[2] = toUnorm8(src[0]);
     if (wm & CW_GREEN) px[1] = toUnorm8(src[1]);
     if (wm & CW_BLUE) px[0] = toUnorm8(src[2]);

@@ -36,6 +36,7 @@ struct InterpolatedInput {
   uint8_t component;  // 0..3
   uint8_t varying;    // vertex output index
   bool flat;          // flat shading: first vertex value
+  bool wrap = false;  // D3DRS_WRAPn: interpolate the shorter way around the unit cylinder
 };
 
 enum class PrimKind : uint8_t { Triangle, Line, Point };
@@ -77,6 +78,7 @@ struct RasterDraw {
     Color4 factor;
     uint32_t writeMask;
   } blend{};
+  bool srgbWrite = false;  // D3DRS_SRGBWRITEENABLE: linear -> sRGB on write
   bool alphaTest = false;
   uint32_t alphaFunc = 8;
   float alphaRef = 0;
