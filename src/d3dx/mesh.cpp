@@ -130,4 +130,53 @@ Mesh cloneMeshFVF(const Mesh& mesh, uint32_t newFvf) {
   return out;
 }
 
+std::vector<uint8_t> Mesh::indexBufferData(bool index32) const {
+  std::vector<uint8_t> out(indices.size() * (index32 ? 4 : 2));
+  for (size_t i = 0; i < indices.size(); ++i) {
+    const uint32_t v = indices[i];
+    if (index32) {
+      std::memcpy(out.data() + 4 * i, &v, 4);
+    } else {
+      if (v > 0xffff) fail("index {} ({}) does not fit a 16-bit index buffer", i, v);
+      const uint16_t s = uint16_t(v);
+      std::memcpy(out.data() + 2 * i, &s, 2);
+    }
+  }
+  return out;
+}
+
+std::vector<Mesh::AttributeRange> Mesh::attributeTable() const {
+  std::vector<AttributeRange> table;
+  for (uint32_t f = 0; f < faceCount(); ++f) {
+    const uint32_t a = attribute(f);
+    if (table.empty() || table.back().attribId != a || table.back().faceStart + table.back().faceCount != f)
+      table.push_back({a, f, 0, UINT32_MAX, 0});
+    AttributeRange& r = table.back();
+    ++r.faceCount;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = indices[3 * f + k];
+      const uint32_t end = r.vertexCount ? r.vertexStart + r.vertexCount : 0;
+      const uint32_t lo = std::min(r.vertexStart, v), hi = std::max(end, v + 1);
+      r.vertexStart = lo;
+      r.vertexCount = hi - lo;
+    }
+  }
+  return table;
+}
+
+void Mesh::sortFacesByAttribute() {
+  if (attributes.empty()) return;
+  std::vector<uint32_t> order(faceCount());
+  for (uint32_t f = 0; f < order.size(); ++f) order[f] = f;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t a, uint32_t b) { return attribute(a) < attribute(b); });
+  std::vector<uint32_t> idx(indices.size()), attr(order.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    for (int k = 0; k < 3; ++k) idx[3 * i + k] = indices[3 * order[i] + k];
+    attr[i] = attribute(order[i]);
+  }
+  indices.swap(idx);
+  attributes.swap(attr);
+}
+
 }  // namespace refx::d3dx

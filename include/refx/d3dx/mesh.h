@@ -74,6 +74,20 @@ struct Mesh {
   FVFLayout layout() const { return FVFLayout::of(fvf); }
   uint32_t attribute(uint32_t face) const { return face < attributes.size() ? attributes[face] : 0; }
 
+  // Index buffer bytes as D3DX stores them: 16-bit (the default) or 32-bit
+  // (D3DXMESH_32BIT); 16-bit throws refx::Error when an index exceeds 65535.
+  std::vector<uint8_t> indexBufferData(bool index32) const;
+  // D3DXATTRIBUTERANGE: one entry per run of consecutive faces with the same attribute
+  // (one per subset after sortFacesByAttribute), with the vertex range they use.
+  struct AttributeRange {
+    uint32_t attribId, faceStart, faceCount, vertexStart, vertexCount;
+    bool operator==(const AttributeRange&) const = default;
+  };
+  std::vector<AttributeRange> attributeTable() const;
+  // Stable sort of the faces by attribute id (OptimizeInplace(D3DXMESHOPT_ATTRSORT)),
+  // so each subset is one contiguous range for DrawSubset.
+  void sortFacesByAttribute();
+
   // Element access; throws refx::Error when the vertex or the element does not exist.
   Vec3 position(uint32_t i) const;
   void setPosition(uint32_t i, Vec3 p);
