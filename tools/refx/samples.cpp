@@ -12,6 +12,7 @@
 
 #include "refx/d3dx/mesh.h"
 #include "refx/d3dx/sample_assets.h"
+#include "refx/d3dx/teapot.h"
 #include "refx/d3dx/texture_fill.h"
 
 namespace refx::samples {
@@ -369,6 +370,61 @@ SampleResult renderMultipass(Device& dev, bool additive) {
   return r;
 }
 
+// ---------------------------------------------------------------- D3DX shapes
+// The D3DX shape generators lit by the fixed-function pipeline: one directional
+// light with specular, a different material per shape.
+SampleResult renderShapes(Device& dev) {
+  SampleResult r;
+  const Texture& rt = *dev.renderTarget();
+  dev.setTransform(TS_VIEW, matrixLookAtLH({0, 0.6f, -6.0f}, {0, 0, 0}, {0, 1, 0}));
+  dev.setTransform(TS_PROJECTION,
+                   matrixPerspectiveFovLH(kPi / 4, float(rt.width()) / float(rt.height()), 0.1f, 100.0f));
+  dev.setRenderState(RS_ZENABLE, ZB_TRUE);
+  dev.setRenderState(RS_SPECULARENABLE, 1);
+  dev.setRenderState(RS_NORMALIZENORMALS, 1);
+  dev.setRenderState(RS_AMBIENT, 0xff303030);
+  Light l;
+  l.type = LIGHT_DIRECTIONAL;
+  l.diffuse = {1, 1, 1, 1};
+  l.specular = {1, 1, 1, 1};
+  l.direction = -kLightDir;
+  dev.setLight(0, l);
+  dev.lightEnable(0, true);
+  dev.setTextureStageState(0, TSS_COLOROP, TOP_SELECTARG1);
+  dev.setTextureStageState(0, TSS_COLORARG1, TA_DIFFUSE);
+  struct Item {
+    d3dx::Mesh mesh;
+    Matrix world;
+    Color4 color;
+  };
+  const Matrix tilt = matrixRotationX(-0.5f) * matrixRotationY(0.6f);
+  const Item items[] = {
+      {d3dx::createTeapot(6), matrixScaling(0.45f, 0.45f, 0.45f) * matrixRotationY(0.5f) * matrixTranslation(-1.5f, 0.9f, 0),
+       {0.9f, 0.9f, 0.95f, 1}},
+      {d3dx::createSphere(0.7f, 24, 12), matrixTranslation(0.5f, 0.9f, 0), {0.9f, 0.3f, 0.2f, 1}},
+      {d3dx::createBox(1.0f, 1.0f, 1.0f), tilt * matrixTranslation(2.0f, 0.9f, 0), {0.3f, 0.7f, 0.3f, 1}},
+      {d3dx::createCylinder(0.45f, 0.3f, 1.2f, 20, 3), matrixRotationX(kPi / 2 + 0.3f) * matrixTranslation(-0.9f, -1.0f, 0),
+       {0.3f, 0.5f, 0.9f, 1}},
+      {d3dx::createTorus(0.2f, 0.6f, 16, 32), matrixRotationX(-0.9f) * matrixTranslation(1.1f, -1.0f, 0),
+       {0.9f, 0.7f, 0.2f, 1}},
+  };
+  for (const Item& it : items) {
+    Material m;
+    m.diffuse = it.color;
+    m.ambient = it.color;
+    m.specular = {0.6f, 0.6f, 0.6f, 1};
+    m.power = 24;
+    dev.setMaterial(m);
+    dev.setTransform(TS_WORLD, it.world);
+    bindMesh(dev, it.mesh);
+    drawMesh(dev, it.mesh);
+  }
+  r.technique = "fixed-function lighting: directional light, specular (power 24)";
+  r.validation = describe(dev.validate());
+  r.notes.push_back("teapot (Newell's 32 patches), D3DXCreateSphere, Box, Cylinder, Torus");
+  return r;
+}
+
 }  // namespace
 
 const std::vector<Sample>& allSamples() {
@@ -383,6 +439,8 @@ const std::vector<Sample>& allSamples() {
        "the RacorX10 blend on a simple scene", [](Device& d) { return renderMultipass(d, false); }},
       {"multipass-add", "Three passes adding a highlight with ONE/ONE",
        "the RacorX11 blend on a simple scene", [](Device& d) { return renderMultipass(d, true); }},
+      {"d3dx-shapes", "D3DX shapes: teapot, sphere, box, cylinder, torus with vertex lighting",
+       "the D3DX helpers of the seeds (D3DXCreate*, the Utah teapot)", renderShapes},
   };
   return samples;
 }
