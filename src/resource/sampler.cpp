@@ -1,13 +1,26 @@
 // Texture sampling over 16-lane SoA batches: D3D9 addressing, point/linear filtering,
 // mip selection, cube faces, border color and sRGB.
 //
-// Two paths compute the same float operations in the same order, so they agree bit
-// for bit:
+// Two paths agree bit for bit:
 //  * a scalar reference path, lane by lane, for every texture type, format and mode;
 //  * a vectorised kernel for the common case (one 2D level or cube face, 8-bit unorm
 //    texels, no BORDER addressing, no sRGB), run on all 16 lanes at once.
 // 8-bit unorm levels are filtered in byte units (0..255) and divided by 255 at the
 // end: point sampling returns exactly byte/255 and constant regions stay constant.
+//
+// Filter weights have 8 bits of sub-texel precision, as on D3D9-era hardware (D3D10
+// later required at least 8): the texel-space position of LINEAR filtering and the
+// λ of MIPFILTER LINEAR are rounded to multiples of 1/256 (toFixed8) before they are
+// split into a texel (level) index and a weight w/256, w in 0..255. For 8-bit unorm
+// texels t_ij a bilinear sample is then exactly
+//   S = sum t_ij·wx_i·wy_j  (wx_0 = 256 - wx, wx_1 = wx; likewise y),  0 <= S <= 255·65536,
+//   result = S / (255·65536) rounded once to float,
+// whichever path computes it: the reference's float lerps are exact on these values
+// (byte units: top/bottom rows are multiples of 1/256 below 256, the blend multiples
+// of 1/65536 below 256, all within float's 24 bits), and the vectorised kernel
+// forms S with integer arithmetic. The mip blend r0 + (m/256)·(r1 - r0) and the
+// volume depth blend stay in float; float, signed, sRGB and BORDER samples use the
+// same quantised weights with float texels.
 #include "refx/resource/sampler.h"
 
 #include <algorithm>
@@ -166,6 +179,19 @@ inline float clampFinite(float x, float lo, float hi) {
   return x < hi ? x : hi;
 }
 
+// Sub-texel precision of filter weights (see the top of the file).
+constexpr int kWeightBits = 8;
+constexpr float kWeightScale = float(1 << kWeightBits);
+constexpr float kWeightUnit = 1.0f / kWeightScale;
+
+// x rounded to the nearest multiple of 1/256, in units of 1/256: floor(x) = X >> 8 and
+// the weight of the next texel (level) (X & 255)/256. Rounds half to even, as the
+// vectorised kernel's vcvtps2dq does (both use the MXCSR mode, round-to-nearest).
+// |x| <= 2^22 here, so X fits an int.
+inline int toFixed8(float x) { return int(std::lrint(x * kWeightScale)); }
+inline int fixed8Floor(int X) { return X >> kWeightBits; }
+inline int fixed8Weight(int X) { return X & ((1 << kWeightBits) - 1); }
+
 void planLevels(const Texture& tex, const SamplerState& st, const float lam[kLanes],
                 LanePlan& p) {
   // λ <= 0: magnification (NaN from degenerate coordinates counts as such).
@@ -186,11 +212,12 @@ void planLevels(const Texture& tex, const SamplerState& st, const float lam[kLan
     if (mip == uint32_t(TextureFilter::Point)) {
       p.level[0][l] = p.level[1][l] = int(std::floor(lc + 0.5f));  // nearest level
       p.mipFrac[l] = 0;
-    } else {  // LINEAR: levels floor(λ) and floor(λ)+1, weighted by frac(λ)
-      int l0 = int(std::floor(lc));
+    } else {  // LINEAR: levels floor(λ) and floor(λ)+1, weighted by frac(λ) in 1/256
+      const int L = toFixed8(lc);
+      const int l0 = fixed8Floor(L);  // lc <= last, so l0 < last or the weight is 0
       p.level[0][l] = l0;
       p.level[1][l] = std::min(l0 + 1, last);
-      p.mipFrac[l] = l0 < last ? lc - float(l0) : 0.0f;
+      p.mipFrac[l] = float(fixed8Weight(L)) * kWeightUnit;
     }
   }
 }
@@ -314,12 +341,17 @@ Color4 sampleScalar(const LevelReader& rd, const TextureAddress addr[3], bool li
   for (int a = 0; a < (volume ? 3 : 2); ++a) {
     float lo, hi;
     positionRange(addr[a], size[a], lo, hi);
-    // POINT: texel floor(u*W); LINEAR: texels floor(u*W - 0.5) and the next one.
+    // POINT: texel floor(u*W); LINEAR: texels floor(u*W - 0.5) and the next one,
+    // with the position rounded to 1/256 texel.
     float x = reduceCoord(addr[a], coord[a]) * float(size[a]);
     if (linear) x = x - 0.5f;
     x = clampPosition(x, lo, hi);
     int i = floorInt(x);
-    frac[a] = x - float(i);
+    if (linear) {
+      const int X = toFixed8(x);
+      i = fixed8Floor(X);
+      frac[a] = float(fixed8Weight(X)) * kWeightUnit;
+    }
     i0[a] = addressTexel(addr[a], i, size[a]);
     i1[a] = addressTexel(addr[a], i + 1, size[a]);
   }
@@ -399,21 +431,47 @@ inline uint32_t scalarLoad(const uint32_t* texels, int i) {
 // operations as sampleScalar, in fewer instructions.
 typedef uint32_t v8u __attribute__((vector_size(32)));
 
-template <TextureAddress A>
-inline void axis8(const float* c, float fn, float off, float lo, float hi, int n, v8i& i0,
-                  v8i& i1, v8f& frac) {
+// toFixed8 on eight lanes: vcvtps2dq rounds by the MXCSR mode, as lrint does.
+inline v8i toFixed8(v8f x) {
+  x = x * kWeightScale;
+#if defined(__AVX__)
+  __m256 m;
+  std::memcpy(&m, &x, sizeof m);
+  const __m256i r = _mm256_cvtps_epi32(m);
+  v8i X;
+  std::memcpy(&X, &r, sizeof X);
+  return X;
+#else
+  v8i X;
+  for (int l = 0; l < 8; ++l) X[l] = int(std::lrint(x[l]));
+  return X;
+#endif
+}
+
+// One axis of eight lanes: texel indices after addressing and, for LINEAR, the weight
+// of the second texel in 1/256 (0..255).
+template <TextureAddress A, bool Linear>
+inline void axis8(const float* c, float fn, float lo, float hi, int n, v8i& i0, v8i& i1,
+                  v8i& w) {
   v8f u;
   std::memcpy(&u, c, sizeof u);
   u = clampPosition(u, -kCoordLimit, kCoordLimit);
   if constexpr (A == TextureAddress::Wrap) u = u - toFloat(floorInt(u));
   if constexpr (A == TextureAddress::Mirror) u = u - 2.0f * toFloat(floorInt(u * 0.5f));
   // WRAP: u is in [0, 1] here, so x lies inside [lo, hi] already.
-  v8f x = u * fn - off;
+  v8f x = u * fn;
+  if constexpr (Linear) x = x - 0.5f;
   if constexpr (A != TextureAddress::Wrap) x = clampPosition(x, lo, hi);
-  v8i i = floorInt(x);
-  frac = x - toFloat(i);
+  v8i i;
+  if constexpr (Linear) {
+    const v8i X = toFixed8(x);
+    i = X >> kWeightBits;
+    w = X & ((1 << kWeightBits) - 1);
+  } else {
+    i = floorInt(x);
+  }
   i0 = addressLanes<A>(i, n);
-  i1 = addressLanes<A>(i + 1, n);
+  if constexpr (Linear) i1 = addressLanes<A>(i + 1, n);
 }
 
 inline v8u load8(const uint32_t* texels, v8i a) {
@@ -469,16 +527,14 @@ inline v8f channel(v8u p, int shift) { return __builtin_convertvector(v8i((p >> 
 template <TextureAddress AU, TextureAddress AV, bool Linear>
 void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float out[4][kLanes]) {
   const int w = lv.width, h = lv.height;
-  const float off = Linear ? 0.5f : 0.0f;
   float loU, hiU, loV, hiV;
   positionRange(AU, w, loU, hiU);
   positionRange(AV, h, loV, hiV);
   const uint32_t* texels = lv.rgba8.data();
   for (int k = 0; k < kLanes; k += 8) {
-    v8i x0, x1, y0, y1;
-    v8f fx, fy;
-    axis8<AU>(u + k, float(w), off, loU, hiU, w, x0, x1, fx);
-    axis8<AV>(v + k, float(h), off, loV, hiV, h, y0, y1, fy);
+    v8i x0, x1, y0, y1, wx, wy;
+    axis8<AU, Linear>(u + k, float(w), loU, hiU, w, x0, x1, wx);
+    axis8<AV, Linear>(v + k, float(h), loV, hiV, h, y0, y1, wy);
     const v8i r0 = y0 * w;
     if constexpr (!Linear) {
       const v8u p = load8(texels, r0 + x0);
@@ -496,6 +552,7 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
         loadPairs8(texels, r0 + x0, p00, p10);
         loadPairs8(texels, r1 + x0, p01, p11);
       }
+      const v8f fx = toFloat(wx) * kWeightUnit, fy = toFloat(wy) * kWeightUnit;
       for (int ch = 0; ch < 4; ++ch) {
         const int shift = 8 * ch;
         const v8f t00 = channel(p00, shift), t10 = channel(p10, shift);

@@ -205,6 +205,53 @@ TEST(Sampler, BilinearIn2D) {
   EXPECT_NEAR(b.out[0][1], 50 / 255.0f, kEps);
 }
 
+// Filter weights have 8 bits of sub-texel precision: the position is rounded to a
+// multiple of 1/256 texel (half to even), weight w/256 of the second texel. For 8-bit
+// texels the sample is S/(255·65536), S = sum texel·wx·wy with wx, wy in 1/256 units.
+TEST(Sampler, BilinearWeightsHaveEightFractionBits) {
+  auto tex = Texture::create2D(Format::A8R8G8B8, 2, 2);
+  // r: (0,0)=0 (1,0)=255 (0,1)=255 (1,1)=0; g: 0 and 100 along x in both rows
+  fill(*tex, 0, 0, [](int x, int y, int) { return argb(255, (x ^ y) ? 255 : 0, 100 * x, 0); });
+  SamplerState s = linearState();
+  s.addressU = s.addressV = TextureAddress::Clamp;
+  Batch b;
+  for (int l = 0; l < N; ++l) b.u[l] = b.v[l] = 0.25f;  // x = y = 0: texel (0,0) alone
+  // lane 0: x = 0.4·2 - 0.5 = 0.3 -> round(0.3·256 = 76.8) = 77, weight 77/256 (not 0.3);
+  // y = 0 (top row).
+  b.u[0] = 0.4f;
+  // lane 1: x = 0.3 as above, y = 0.6·2 - 0.5 = 0.7 -> round(179.2) = 179.
+  b.u[1] = 0.4f, b.v[1] = 0.6f;
+  // lanes 2, 3: x = 1.5/256 exactly -> 2 (tie to even); x = 0.5/256 -> 0.
+  b.u[2] = 0.25f + 0.75f / 256, b.u[3] = 0.25f + 0.25f / 256;
+  b.run(*tex, s);
+  // lane 0, r: 255·77/256 = 76.70 -> 76.70/255 = 77/256 = 0.30078125 (float weights: 0.3)
+  EXPECT_EQ(b.out[0][0], 0.30078125f);
+  // lane 0, g: 100·77/256 = 30.078125 -> /255 (one rounding of an exact quotient)
+  EXPECT_EQ(b.out[1][0], 30.078125f / 255.0f);
+  // lane 1, r: S = 255·(179·179 + 77·77) over the four texels (wx0 = 179, wx1 = 77,
+  // wy0 = 77, wy1 = 179) = 255·37970 -> 37970/65536 = 0.579376220703125
+  EXPECT_EQ(b.out[0][1], 0.579376220703125f);
+  EXPECT_EQ(b.out[1][1], 30.078125f / 255.0f);  // g does not change along y
+  EXPECT_EQ(b.out[0][2], 2.0f / 256);           // 255·2/256 / 255
+  EXPECT_EQ(b.out[0][3], 0.0f);
+  EXPECT_EQ(b.out[3][1], 1.0f);                 // alpha 255 everywhere: 255·65536/(255·65536)
+}
+
+// Float texels are weighted with the same 1/256 steps.
+TEST(Sampler, FloatTexelsUseTheSameWeights) {
+  auto tex = Texture::create2D(Format::A32B32G32R32F, 2, 1);
+  const float texels[2][4] = {{0, 0, 0, 1}, {1, 0.5f, 0, 1}};  // R, G, B, A
+  std::memcpy(tex->data(0, 0), texels, sizeof texels);
+  tex->markDirty();
+  SamplerState s = linearState();
+  s.addressU = s.addressV = TextureAddress::Clamp;
+  Batch b;
+  for (int l = 0; l < N; ++l) b.u[l] = 0.4f, b.v[l] = 0.5f;  // x = 0.3 -> 77/256
+  b.run(*tex, s);
+  EXPECT_EQ(b.out[0][0], 0.30078125f);   // 0 + 77/256·(1 - 0)
+  EXPECT_EQ(b.out[1][0], 0.150390625f);  // 77/256·0.5
+}
+
 TEST(Sampler, TexelCentersGiveTheTexelWithLinear) {
   // u = (i + 0.5)/W, v = (j + 0.5)/H -> x = i, y = j exactly, weight 1 on texel (i,j).
   const int W = 5, H = 3;
@@ -394,6 +441,11 @@ TEST(Sampler, LinearMipBlendsTwoLevels) {
   EXPECT_NEAR(b.out[0][1], 100 / 255.0f, kEps);
   EXPECT_FLOAT_EQ(b.out[0][2], 160 / 255.0f);
   EXPECT_FLOAT_EQ(b.out[0][3], 240 / 255.0f);
+  // λ = 1.3 -> round(1.3·256 = 332.8) = 333 = 1 + 77/256: 80 + 77/256·80 = 104.0625
+  // (frac 0.3 unquantised: 104)
+  b.lod[4] = 1.3f;
+  b.run(*tex, s);
+  EXPECT_NEAR(b.out[0][4], 104.0625f / 255.0f, 1e-6f);
   // from derivatives: step 2^1.5 texels -> λ = 1.5
   b.quads(0.3f, 0.3f, std::exp2(1.5f) / 8, 0.0f);
   b.run(*tex, s, LodMode::Derivatives);
