@@ -524,6 +524,41 @@ inline void loadPairs8(const uint32_t* texels, v8i a, v8u& first, v8u& second) {
 
 inline v8f channel(v8u p, int shift) { return __builtin_convertvector(v8i((p >> shift) & 255u), v8f); }
 
+// Bilinear filtering of eight lanes in integers: two channels per 32-bit lane (r,b and
+// g,a, one byte each in the low half of a 16-bit lane), lerped along x in sixteen
+// 16-bit lanes, t0·256 + (t1 - t0)·wx: 0..65280, the row in 1/256 byte units, exact
+// (the arithmetic wraps mod 2^16 but the result fits). Along y in float, exact too:
+// top + (bottom - top)·wy/256 is a multiple of 1/256 below 65536 (24 bits), = S/256.
+typedef uint16_t v16h __attribute__((vector_size(32)));
+
+inline v16h rowLerp(v8u t0, v8u t1, v16h wx) {
+  const v16h a = v16h(t0), b = v16h(t1);
+  return (a << 8) + (b - a) * wx;
+}
+
+inline v8f fmadd(v8f a, v8f b, v8f c) {
+#if defined(__FMA__)
+  __m256 ma, mb, mc;
+  std::memcpy(&ma, &a, sizeof ma);
+  std::memcpy(&mb, &b, sizeof mb);
+  std::memcpy(&mc, &c, sizeof mc);
+  const __m256 r = _mm256_fmadd_ps(ma, mb, mc);
+  v8f v;
+  std::memcpy(&v, &r, sizeof v);
+  return v;
+#else
+  return a * b + c;  // exact here either way
+#endif
+}
+
+// One channel from the low (shift 0) or high (shift 16) halves of two row results:
+// S/(255·65536) = (S/256)/65280, one correctly rounded division as in the reference.
+inline v8f columnLerp(v16h top, v16h bottom, int shift, v8f wy) {
+  const v8f t = toFloat(v8i((v8u(top) >> shift) & 0xffffu));
+  const v8f b = toFloat(v8i((v8u(bottom) >> shift) & 0xffffu));
+  return fmadd(b - t, wy, t) / 65280.0f;
+}
+
 template <TextureAddress AU, TextureAddress AV, bool Linear>
 void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float out[4][kLanes]) {
   const int w = lv.width, h = lv.height;
@@ -552,16 +587,19 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
         loadPairs8(texels, r0 + x0, p00, p10);
         loadPairs8(texels, r1 + x0, p01, p11);
       }
-      const v8f fx = toFloat(wx) * kWeightUnit, fy = toFloat(wy) * kWeightUnit;
-      for (int ch = 0; ch < 4; ++ch) {
-        const int shift = 8 * ch;
-        const v8f t00 = channel(p00, shift), t10 = channel(p10, shift);
-        const v8f t01 = channel(p01, shift), t11 = channel(p11, shift);
-        const v8f top = t00 + fx * (t10 - t00);
-        const v8f bottom = t01 + fx * (t11 - t01);
-        const v8f t = (top + fy * (bottom - top)) / 255.0f;
-        std::memcpy(out[ch] + k, &t, sizeof t);
-      }
+      const v8u m = v8u{} + 0x00ff00ffu;
+      const v16h wx2 = v16h(v8u(wx) | v8u(wx << 16));
+      const v16h topRB = rowLerp(p00 & m, p10 & m, wx2);
+      const v16h topGA = rowLerp((p00 >> 8) & m, (p10 >> 8) & m, wx2);
+      const v16h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
+      const v16h bottomGA = rowLerp((p01 >> 8) & m, (p11 >> 8) & m, wx2);
+      const v8f fy = toFloat(wy) * kWeightUnit;
+      const v8f r = columnLerp(topRB, bottomRB, 0, fy), g = columnLerp(topGA, bottomGA, 0, fy);
+      const v8f b = columnLerp(topRB, bottomRB, 16, fy), a = columnLerp(topGA, bottomGA, 16, fy);
+      std::memcpy(out[0] + k, &r, sizeof r);
+      std::memcpy(out[1] + k, &g, sizeof g);
+      std::memcpy(out[2] + k, &b, sizeof b);
+      std::memcpy(out[3] + k, &a, sizeof a);
     }
   }
 }
