@@ -431,9 +431,8 @@ inline uint32_t scalarLoad(const uint32_t* texels, int i) {
 // operations as sampleScalar, in fewer instructions.
 typedef uint32_t v8u __attribute__((vector_size(32)));
 
-// toFixed8 on eight lanes: vcvtps2dq rounds by the MXCSR mode, as lrint does.
-inline v8i toFixed8(v8f x) {
-  x = x * kWeightScale;
+// Rounds to the nearest int by the MXCSR mode (vcvtps2dq), as lrint does.
+inline v8i roundInt(v8f x) {
 #if defined(__AVX__)
   __m256 m;
   std::memcpy(&m, &x, sizeof m);
@@ -448,30 +447,65 @@ inline v8i toFixed8(v8f x) {
 #endif
 }
 
+// float(floorInt(x)) for |x| <= 2^22 (vroundps toward -inf).
+inline v8f floorFloat(v8f x) {
+#if defined(__AVX__)
+  __m256 m;
+  std::memcpy(&m, &x, sizeof m);
+  m = _mm256_floor_ps(m);
+  std::memcpy(&x, &m, sizeof x);
+  return x;
+#else
+  return toFloat(floorInt(x));
+#endif
+}
+
+// Unsigned minimum of each lane.
+inline v8i minU32(v8i a, v8i b) {
+  const v8u ua = v8u(a), ub = v8u(b);
+  return v8i(ua < ub ? ua : ub);
+}
+
+// WRAP for indices in [-1, n]: as unsigned, the wrong one of i, i + n, i - n is the
+// larger (i + n for i = n, i for i = -1, and i - n below n = 0 only for i = n).
+inline v8i wrapLow(v8i i, int n) { return minU32(i, i + n); }   // i in [-1, n - 1]
+inline v8i wrapHigh(v8i i, int n) { return minU32(i, i - n); }  // i in [0, n]
+
 // One axis of eight lanes: texel indices after addressing and, for LINEAR, the weight
-// of the second texel in 1/256 (0..255).
+// of the second texel in 1/256 (0..255). LINEAR takes X = toFixed8(u·W - 0.5) as
+// u·(256·W) - 128: scaling by 256 commutes with rounding, so it is the same value.
 template <TextureAddress A, bool Linear>
 inline void axis8(const float* c, float fn, float lo, float hi, int n, v8i& i0, v8i& i1,
-                  v8i& w) {
+                  v8i& X) {
   v8f u;
   std::memcpy(&u, c, sizeof u);
   u = clampPosition(u, -kCoordLimit, kCoordLimit);
-  if constexpr (A == TextureAddress::Wrap) u = u - toFloat(floorInt(u));
-  if constexpr (A == TextureAddress::Mirror) u = u - 2.0f * toFloat(floorInt(u * 0.5f));
-  // WRAP: u is in [0, 1] here, so x lies inside [lo, hi] already.
-  v8f x = u * fn;
-  if constexpr (Linear) x = x - 0.5f;
-  if constexpr (A != TextureAddress::Wrap) x = clampPosition(x, lo, hi);
-  v8i i;
+  if constexpr (A == TextureAddress::Wrap) u = u - floorFloat(u);
+  if constexpr (A == TextureAddress::Mirror) u = u - 2.0f * floorFloat(u * 0.5f);
+  // WRAP: u is in [0, 1] here, so x lies inside [lo, hi] already, and POINT's texel
+  // in [0, n], LINEAR's in [-1, n - 1].
   if constexpr (Linear) {
-    const v8i X = toFixed8(x);
-    i = X >> kWeightBits;
-    w = X & ((1 << kWeightBits) - 1);
+    v8f x = u * (fn * kWeightScale) - 0.5f * kWeightScale;
+    if constexpr (A != TextureAddress::Wrap)
+      x = clampPosition(x, lo * kWeightScale, hi * kWeightScale);
+    X = roundInt(x);
+    const v8i i = X >> kWeightBits;
+    if constexpr (A == TextureAddress::Wrap) {
+      i0 = wrapLow(i, n);
+      i1 = wrapHigh(i + 1, n);
+    } else {
+      i0 = addressLanes<A>(i, n);
+      i1 = addressLanes<A>(i + 1, n);
+    }
   } else {
-    i = floorInt(x);
+    v8f x = u * fn;
+    if constexpr (A != TextureAddress::Wrap) x = clampPosition(x, lo, hi);
+    const v8i i = __builtin_convertvector(floorFloat(x), v8i);
+    if constexpr (A == TextureAddress::Wrap)
+      i0 = wrapHigh(i, n);
+    else
+      i0 = addressLanes<A>(i, n);
   }
-  i0 = addressLanes<A>(i, n);
-  if constexpr (Linear) i1 = addressLanes<A>(i + 1, n);
 }
 
 inline v8u load8(const uint32_t* texels, v8i a) {
@@ -492,34 +526,44 @@ inline v8u load8(const uint32_t* texels, v8i a) {
 // Whether every lane's second column is the next texel in memory (no wrap or clamp
 // at the row end), so both columns come from one 64-bit load.
 inline bool pairs8(v8i x0, v8i x1) {
-  const v8i d = x1 - x0;
-  const v8i one = v8i{} + 1;
-  return __builtin_memcmp(&d, &one, sizeof d) == 0;
+  const v8i next = (x1 - x0) == 1;
+#if defined(__AVX2__)
+  __m256i m;
+  std::memcpy(&m, &next, sizeof m);
+  return _mm256_movemask_epi8(m) == -1;
+#else
+  const v8i all = v8i{} - 1;
+  return __builtin_memcmp(&next, &all, sizeof next) == 0;
+#endif
 }
 
 // Texels a[l] and a[l] + 1 of every lane.
 inline void loadPairs8(const uint32_t* texels, v8i a, v8u& first, v8u& second) {
   typedef uint64_t v4q __attribute__((vector_size(32)));
   v4q lo, hi;
+  // lo holds the pairs of lanes 0, 1, 4, 5 and hi those of 2, 3, 6, 7, so that one
+  // in-lane shuffle (vshufps) per output puts lanes back in order.
 #if defined(__AVX2__)
   __m256i idx;
   std::memcpy(&idx, &a, sizeof idx);
+  idx = _mm256_permute4x64_epi64(idx, 0xd8);  // a0 a1 a4 a5 | a2 a3 a6 a7
   const auto* base = reinterpret_cast<const long long*>(texels);
   const __m256i g0 = _mm256_i32gather_epi64(base, _mm256_castsi256_si128(idx), 4);
   const __m256i g1 = _mm256_i32gather_epi64(base, _mm256_extracti128_si256(idx, 1), 4);
   std::memcpy(&lo, &g0, sizeof lo);
   std::memcpy(&hi, &g1, sizeof hi);
 #else
+  const int order[8] = {0, 1, 4, 5, 2, 3, 6, 7};
   for (int l = 0; l < 4; ++l) {
-    std::memcpy(&lo[l], texels + a[l], 8);
-    std::memcpy(&hi[l], texels + a[l + 4], 8);
+    std::memcpy(&lo[l], texels + a[order[l]], 8);
+    std::memcpy(&hi[l], texels + a[order[l + 4]], 8);
   }
 #endif
   v8u l, h;
   std::memcpy(&l, &lo, sizeof l);
   std::memcpy(&h, &hi, sizeof h);
-  first = __builtin_shufflevector(l, h, 0, 2, 4, 6, 8, 10, 12, 14);
-  second = __builtin_shufflevector(l, h, 1, 3, 5, 7, 9, 11, 13, 15);
+  first = __builtin_shufflevector(l, h, 0, 2, 8, 10, 4, 6, 12, 14);
+  second = __builtin_shufflevector(l, h, 1, 3, 9, 11, 5, 7, 13, 15);
 }
 
 inline v8f channel(v8u p, int shift) { return __builtin_convertvector(v8i((p >> shift) & 255u), v8f); }
@@ -530,6 +574,23 @@ inline v8f channel(v8u p, int shift) { return __builtin_convertvector(v8i((p >> 
 // (the arithmetic wraps mod 2^16 but the result fits). Along y in float, exact too:
 // top + (bottom - top)·wy/256 is a multiple of 1/256 below 65536 (24 bits), = S/256.
 typedef uint16_t v16h __attribute__((vector_size(32)));
+
+// The weight (low byte of the fixed-point position) in both 16-bit halves of each lane.
+inline v16h weightPairs(v8i X) {
+#if defined(__AVX2__)
+  __m256i m;
+  std::memcpy(&m, &X, sizeof m);
+  const __m256i pick = _mm256_setr_epi8(0, -1, 0, -1, 4, -1, 4, -1, 8, -1, 8, -1, 12, -1, 12, -1,
+                                        0, -1, 0, -1, 4, -1, 4, -1, 8, -1, 8, -1, 12, -1, 12, -1);
+  m = _mm256_shuffle_epi8(m, pick);
+  v16h w;
+  std::memcpy(&w, &m, sizeof w);
+  return w;
+#else
+  const v8u w = v8u(X) & 255u;
+  return v16h(w | (w << 16));
+#endif
+}
 
 inline v16h rowLerp(v8u t0, v8u t1, v16h wx) {
   const v16h a = v16h(t0), b = v16h(t1);
@@ -553,9 +614,11 @@ inline v8f fmadd(v8f a, v8f b, v8f c) {
 
 // One channel from the low (shift 0) or high (shift 16) halves of two row results:
 // S/(255·65536) = (S/256)/65280, one correctly rounded division as in the reference.
-inline v8f columnLerp(v16h top, v16h bottom, int shift, v8f wy) {
-  const v8f t = toFloat(v8i((v8u(top) >> shift) & 0xffffu));
-  const v8f b = toFloat(v8i((v8u(bottom) >> shift) & 0xffffu));
+template <int Shift>
+inline v8f columnLerp(v16h top, v16h bottom, v8f wy) {
+  const v8u mask = v8u{} + (Shift ? 0xffffffffu : 0xffffu);
+  const v8f t = toFloat(v8i((v8u(top) >> Shift) & mask));
+  const v8f b = toFloat(v8i((v8u(bottom) >> Shift) & mask));
   return fmadd(b - t, wy, t) / 65280.0f;
 }
 
@@ -567,9 +630,9 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
   positionRange(AV, h, loV, hiV);
   const uint32_t* texels = lv.rgba8.data();
   for (int k = 0; k < kLanes; k += 8) {
-    v8i x0, x1, y0, y1, wx, wy;
-    axis8<AU, Linear>(u + k, float(w), loU, hiU, w, x0, x1, wx);
-    axis8<AV, Linear>(v + k, float(h), loV, hiV, h, y0, y1, wy);
+    v8i x0, x1, y0, y1, fixedX, fixedY;
+    axis8<AU, Linear>(u + k, float(w), loU, hiU, w, x0, x1, fixedX);
+    axis8<AV, Linear>(v + k, float(h), loV, hiV, h, y0, y1, fixedY);
     const v8i r0 = y0 * w;
     if constexpr (!Linear) {
       const v8u p = load8(texels, r0 + x0);
@@ -588,14 +651,14 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
         loadPairs8(texels, r1 + x0, p01, p11);
       }
       const v8u m = v8u{} + 0x00ff00ffu;
-      const v16h wx2 = v16h(v8u(wx) | v8u(wx << 16));
+      const v16h wx2 = weightPairs(fixedX);
       const v16h topRB = rowLerp(p00 & m, p10 & m, wx2);
       const v16h topGA = rowLerp((p00 >> 8) & m, (p10 >> 8) & m, wx2);
       const v16h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
       const v16h bottomGA = rowLerp((p01 >> 8) & m, (p11 >> 8) & m, wx2);
-      const v8f fy = toFloat(wy) * kWeightUnit;
-      const v8f r = columnLerp(topRB, bottomRB, 0, fy), g = columnLerp(topGA, bottomGA, 0, fy);
-      const v8f b = columnLerp(topRB, bottomRB, 16, fy), a = columnLerp(topGA, bottomGA, 16, fy);
+      const v8f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
+      const v8f r = columnLerp<0>(topRB, bottomRB, fy), g = columnLerp<0>(topGA, bottomGA, fy);
+      const v8f b = columnLerp<16>(topRB, bottomRB, fy), a = columnLerp<16>(topGA, bottomGA, fy);
       std::memcpy(out[0] + k, &r, sizeof r);
       std::memcpy(out[1] + k, &g, sizeof g);
       std::memcpy(out[2] + k, &b, sizeof b);
