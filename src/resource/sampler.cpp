@@ -822,9 +822,22 @@ bool sample2DUniform(const Fast2D& f, const float* const c[3], uint32_t mask,
   typedef int32_t v4i __attribute__((vector_size(16)));
   v4u mbits;
   std::memcpy(&mbits, &ms, sizeof mbits);
-  const v4u mmant = mbits & 0x7fffffu;
-  const v4i form = (mbits - 0x00800000u < 0x7f000000u) & (mmant >= 0x1000u) & (mmant < 0x7ff000u);
-  if (st.mipLodBias == 0.0f && form[0] && form[1] && form[2] && form[3]) {
+  // Every lane true (all bits set)?
+  const auto all4 = [](v4i t) {
+#if defined(__AVX__)
+    __m128 m;
+    std::memcpy(&m, &t, sizeof m);
+    return _mm_movemask_ps(m) == 0xf;
+#else
+    return t[0] && t[1] && t[2] && t[3];
+#endif
+  };
+  // Normal, positive and finite (bits in [2^23, 0x7f800000) as signed ints), mantissa
+  // in [0x1000, 0x7ff000): signed compares only.
+  const v4i sbits = v4i(mbits), smant = sbits & 0x7fffff;
+  const v4i form = (sbits >= 0x00800000) & (sbits < 0x7f800000) & (smant >= 0x1000) &
+                   (smant < 0x7ff000);
+  if (st.mipLodBias == 0.0f && all4(form)) {
     const v4i e = v4i(mbits >> 23) - 127;
     const v4i linear = e >= 0 ? v4i{} + minLinear : v4i{} + magLinear;
     v4i level = (e + 1) >> 1;
@@ -832,7 +845,7 @@ bool sample2DUniform(const Fast2D& f, const float* const c[3], uint32_t mask,
     level = level > last ? v4i{} + last : level;
     if (mipNone) level = v4i{};
     const v4i k = (level << 1) | linear;
-    if (k[1] != k[0] || k[2] != k[0] || k[3] != k[0]) return false;
+    if (!all4(k == __builtin_shufflevector(k, k, 0, 0, 0, 0))) return false;
     key = k[0];
     classified = true;
   }
