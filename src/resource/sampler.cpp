@@ -188,7 +188,13 @@ constexpr float kWeightUnit = 1.0f / kWeightScale;
 // the weight of the next texel (level) (X & 255)/256. Rounds half to even, as the
 // vectorised kernel's vcvtps2dq does (both use the MXCSR mode, round-to-nearest).
 // |x| <= 2^22 here, so X fits an int.
-inline int toFixed8(float x) { return int(std::lrint(x * kWeightScale)); }
+inline int toFixed8(float x) {
+#if defined(__AVX__)
+  return _mm_cvtss_si32(_mm_set_ss(x * kWeightScale));  // vcvtss2si: MXCSR rounding, inline
+#else
+  return int(std::lrint(x * kWeightScale));
+#endif
+}
 inline int fixed8Floor(int X) { return X >> kWeightBits; }
 inline int fixed8Weight(int X) { return X & ((1 << kWeightBits) - 1); }
 
