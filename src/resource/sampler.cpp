@@ -805,21 +805,21 @@ bool sample2DUniform(const Fast2D& f, const float* const c[3], uint32_t mask,
   const bool mipNone = f.mipNone;
   const int last = f.last, first = f.first;
   const float* size = f.size;
-  // ρ² of the four quads at once: lanes tl = 4q, tr = 4q+1, bl = 4q+2 gathered into
-  // one vector per corner; the same operations in the same order as Footprint::lod.
+  // ρ² of the four quads at once, with the same operations in the same order as
+  // Footprint::lod. Quad q's lanes tl, tr, bl, br are one 128-bit half of a v8f, so
+  // subtracting the half's first lane gives tr - tl and bl - tl in its lanes 1 and 2.
   typedef float v4f __attribute__((vector_size(16)));
-  v4f la{}, lb{};
-  for (int i = 0; i < 3; ++i) {
-    v8f lo, hi;
-    std::memcpy(&lo, c[i], sizeof lo);
-    std::memcpy(&hi, c[i] + 8, sizeof hi);
-    const v4f tl = __builtin_shufflevector(lo, hi, 0, 4, 8, 12);
-    const v4f tr = __builtin_shufflevector(lo, hi, 1, 5, 9, 13);
-    const v4f bl = __builtin_shufflevector(lo, hi, 2, 6, 10, 14);
-    const v4f a = (tr - tl) * size[i], b = (bl - tl) * size[i];
-    la = i == 0 ? a * a : la + a * a;
-    lb = i == 0 ? b * b : lb + b * b;
+  v8f sq[2];
+  for (int h = 0; h < 2; ++h) {
+    for (int i = 0; i < 3; ++i) {
+      v8f x;
+      std::memcpy(&x, c[i] + 8 * h, sizeof x);
+      const v8f d = (x - __builtin_shufflevector(x, x, 0, 0, 0, 0, 4, 4, 4, 4)) * size[i];
+      sq[h] = i == 0 ? d * d : sq[h] + d * d;
+    }
   }
+  const v4f la = __builtin_shufflevector(sq[0], sq[1], 1, 5, 9, 13);  // a² of quads 0..3
+  const v4f lb = __builtin_shufflevector(sq[0], sq[1], 2, 6, 10, 14);  // b²
   const v4f ms = la < lb ? lb : la;  // std::max(la, lb)
   int key = -1;
   bool classified = false;
