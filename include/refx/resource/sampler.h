@@ -49,7 +49,10 @@ struct SampleRequest {
   uint16_t laneMask = 0xffff;        // lanes whose result is needed (others may be skipped)
 };
 
-// out[channel][lane] = sampled (r,g,b,a) as the shader sees it.
+// out[channel][lane] = sampled (r,g,b,a) as the shader sees it. LINEAR filtering and
+// the MIPFILTER LINEAR blend weigh with 8 bits of sub-texel precision (positions and λ
+// rounded to 1/256). 8-bit unorm texels: POINT gives byte/255 exactly, bilinear gives
+// S/(255·65536) rounded once, S = sum of texel·wx·wy with weights in 1/256 units.
 void sampleTexture(const Texture& tex, const SamplerState& state, const SampleRequest& req,
                    float out[4][kBatchLanes]);
 
