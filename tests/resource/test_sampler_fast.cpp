@@ -61,6 +61,38 @@ TEST(SamplerFastPaths, CoherentBatchesMatchReference) {
   EXPECT_EQ(compared, 4000 * 4 * N);
 }
 
+// WRAP at the ends of the period: u = -tiny reduces to u - floor(u) = 1.0f, so POINT
+// reads texel floor(1·W) = W -> wraps to 0 and LINEAR texels W - 1 and W -> 0 with
+// weight round((W - 0.5 - (W - 1))·256)/256 = 128/256.
+TEST(SamplerFastPaths, WrapAtThePeriodEnds) {
+  auto tex = Texture::create2D(Format::A8R8G8B8, 4, 3, 1);
+  uint8_t* p = tex->data(0, 0);
+  for (size_t i = 0; i < tex->dataSize(0, 0); ++i) p[i] = uint8_t(37 * i + 11);
+  tex->markDirty();
+  const float ends[] = {-1e-9f, -1e-30f, -0.0f, 0.0f, 1.0f, -1.0f, 1e-9f, 0.99999994f};
+  alignas(64) float u[N], v[N];
+  for (int l = 0; l < N; ++l) u[l] = ends[l % 8], v[l] = ends[(l + 3) % 8];
+  for (TextureFilter f : {TextureFilter::Point, TextureFilter::Linear}) {
+    SamplerState s;
+    s.magFilter = s.minFilter = f;
+    SampleRequest req;
+    req.u = u, req.v = v;
+    float fast[4][N], ref[4][N];
+    sampleTexture(*tex, s, req, fast);
+    sampleTextureReference(*tex, s, req, ref);
+    for (int ch = 0; ch < 4; ++ch)
+      for (int l = 0; l < N; ++l) ASSERT_EQ(fast[ch][l], ref[ch][l]) << "ch " << ch << " lane " << l;
+    // lane 0: u = v = -1e-9 (v from ends[3] = 0 here: row 0). POINT: texel (0, 0) red.
+    if (f == TextureFilter::Point) EXPECT_EQ(fast[0][0], float(p[2]) / 255.0f);
+    // LINEAR, lane 0: x between texels 3 and 0 at weight 1/2, y = 0·3 - 0.5: rows 2 and 0
+    // at 1/2: red = (p(3,0) + p(0,0) + p(3,2) + p(0,2))·1/4.
+    if (f == TextureFilter::Linear) {
+      auto red = [&](int x, int y) { return float(p[(y * 4 + x) * 4 + 2]); };
+      const float sum = red(3, 0) + red(0, 0) + red(3, 2) + red(0, 2);  // exact, ·16384 = S
+      EXPECT_EQ(fast[0][0], sum * 16384.0f / (255.0f * 65536.0f));
+    }
+  }
+}
 
 // A PreparedSampler gives what sampleTexture gives, for every kind of request.
 TEST(SamplerFastPaths, PreparedSamplerMatchesSampleTexture) {
