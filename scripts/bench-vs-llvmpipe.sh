@@ -17,7 +17,7 @@ if [ -n "${MISSING:-}" ]; then
   SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO=sudo
   $SUDO apt-get install -y -q --no-install-recommends $MISSING
 fi
-./scripts/build.sh refx >/dev/null
+./scripts/build.sh --target refx >/dev/null
 mkdir -p build
 [ build/llvmpipe_bench -nt "$ANCHOR/llvmpipe_bench.cpp" ] ||
   g++ -O2 -std=c++17 -o build/llvmpipe_bench "$ANCHOR/llvmpipe_bench.cpp" -lEGL -lOpenGL

@@ -560,9 +560,14 @@ inline void loadPairs8(const uint32_t* texels, v8i a, v8u& first, v8u& second) {
   std::memcpy(&hi, &g1, sizeof hi);
 #else
   const int order[8] = {0, 1, 4, 5, 2, 3, 6, 7};
+  // Element addresses of vector types are not portable (clang rejects them): load
+  // through scalars.
   for (int l = 0; l < 4; ++l) {
-    std::memcpy(&lo[l], texels + a[order[l]], 8);
-    std::memcpy(&hi[l], texels + a[order[l + 4]], 8);
+    long long p0, p1;
+    std::memcpy(&p0, texels + a[order[l]], 8);
+    std::memcpy(&p1, texels + a[order[l + 4]], 8);
+    lo[l] = p0;
+    hi[l] = p1;
   }
 #endif
   v8u l, h;
