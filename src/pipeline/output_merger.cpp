@@ -10,7 +10,9 @@ namespace refx::pipeline {
 
 using namespace d3d;
 
-bool compare(uint32_t func, float a, float b) {
+// D3DCMPFUNC on depth (float) or alpha/stencil (8-bit integer) values.
+template <typename T>
+static bool compareValues(uint32_t func, T a, T b) {
   switch (func) {
     case CMP_NEVER: return false;
     case CMP_LESS: return a < b;
@@ -23,18 +25,8 @@ bool compare(uint32_t func, float a, float b) {
   }
 }
 
-static bool compareU(uint32_t func, uint32_t a, uint32_t b) {
-  switch (func) {
-    case CMP_NEVER: return false;
-    case CMP_LESS: return a < b;
-    case CMP_EQUAL: return a == b;
-    case CMP_LESSEQUAL: return a <= b;
-    case CMP_GREATER: return a > b;
-    case CMP_NOTEQUAL: return a != b;
-    case CMP_GREATEREQUAL: return a >= b;
-    default: return true;
-  }
-}
+bool compare(uint32_t func, float a, float b) { return compareValues(func, a, b); }
+static bool compareU(uint32_t func, uint32_t a, uint32_t b) { return compareValues(func, a, b); }
 
 typedef float v4f __attribute__((vector_size(16)));
 typedef int32_t v4i __attribute__((vector_size(16)));

@@ -13,6 +13,7 @@
 #include "refx/d3dx/mesh.h"
 #include "refx/pipeline/device.h"
 #include "refx/resource/image_io.h"
+#include "samples.h"
 
 namespace refx::cli {
 
@@ -97,15 +98,7 @@ void setupDevice(Device& dev, const Scene& s, const TexturePtr& tex, int w, int 
   dev.setTextureStageState(0, TSS_COLOROP, TOP_MODULATE);
   dev.setTextureStageState(0, TSS_COLORARG1, TA_TEXTURE);
   dev.setTextureStageState(0, TSS_COLORARG2, TA_DIFFUSE);
-  dev.setFVF(s.mesh.fvf);
-  auto vb = std::make_shared<VertexBuffer>();
-  vb->data = s.mesh.vertices;
-  dev.setStreamSource(0, vb, 0, s.mesh.stride);
-  auto ib = std::make_shared<IndexBuffer>();
-  ib->index32 = true;
-  ib->data.resize(s.mesh.indices.size() * 4);
-  std::memcpy(ib->data.data(), s.mesh.indices.data(), ib->data.size());
-  dev.setIndices(ib);
+  samples::bindMesh(dev, s.mesh);
   if (!s.sphere) {
     dev.setRenderState(RS_LIGHTING, 0);
     return;

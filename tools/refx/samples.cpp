@@ -51,18 +51,6 @@ const Assets& assets() {
   return a;
 }
 
-void bindMesh(Device& dev, const d3dx::Mesh& m) {
-  dev.setFVF(m.fvf);
-  auto vb = std::make_shared<VertexBuffer>();
-  vb->data = m.vertices;
-  dev.setStreamSource(0, vb, 0, m.stride);
-  auto ib = std::make_shared<IndexBuffer>();
-  ib->index32 = true;
-  ib->data.resize(m.indices.size() * 4);
-  std::memcpy(ib->data.data(), m.indices.data(), ib->data.size());
-  dev.setIndices(ib);
-}
-
 void drawMesh(Device& dev, const d3dx::Mesh& m) {
   dev.drawIndexedPrimitive(PT_TRIANGLELIST, 0, 0, m.vertexCount(), 0, m.faceCount());
 }
@@ -426,6 +414,17 @@ SampleResult renderShapes(Device& dev) {
 }
 
 }  // namespace
+
+void bindMesh(Device& dev, const d3dx::Mesh& m) {
+  dev.setFVF(m.fvf);
+  auto vb = std::make_shared<VertexBuffer>();
+  vb->data = m.vertices;
+  dev.setStreamSource(0, vb, 0, m.stride);
+  auto ib = std::make_shared<IndexBuffer>();
+  ib->index32 = true;
+  ib->data = m.indexBufferData(true);
+  dev.setIndices(ib);
+}
 
 const std::vector<Sample>& allSamples() {
   static const std::vector<Sample> samples = {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "refx/d3dx/mesh.h"
 #include "refx/pipeline/device.h"
 
 namespace refx::samples {
@@ -23,5 +24,8 @@ struct Sample {
 };
 
 const std::vector<Sample>& allSamples();
+
+// Sets the mesh's FVF, a vertex buffer on stream 0 and a 32-bit index buffer.
+void bindMesh(Device& dev, const d3dx::Mesh& mesh);
 
 }  // namespace refx::samples
