@@ -1,0 +1,34 @@
+// Version rules of the D3D9 shader models (one table per version) checked against a
+// decoded Shader: instruction slots, register files and counts, modifiers, order
+// rules of ps_1_x, ps_1_4 phases, dcl rules and flow-control nesting.
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "refx/shader/bytecode.h"
+
+namespace refx::shader {
+
+// Device limits the rules depend on (from the caps profile); defaults = the
+// minimum every device of the version guarantees.
+struct ValidationCaps {
+  int maxVertexShaderConst = 0;   // 0 = the version's minimum (96 for vs_1_1, 256 for vs_2_0+)
+  int vs2xTemps = 12;             // vs_2_x NumTemps
+  int ps2xTemps = 12;             // ps_2_x NumTemps
+  int ps2xInstructionSlots = 96;  // ps_2_x NumInstructionSlots
+  bool ps2xFlowControl = true;    // ps_2_x static flow control / predication / dsx
+};
+
+struct Diagnostic {
+  SourcePos pos;        // from the assembler; {0,0} for decoded bytecode
+  std::string message;  // "ps_1_1 allows 8 arithmetic instructions, this shader has 9"
+};
+
+// All rule violations found (empty = valid).
+std::vector<Diagnostic> validate(const Shader& shader, const ValidationCaps& caps = {});
+
+// Throws refx::Error with the first violation as "file:line:col: error: message".
+void requireValid(const Shader& shader, std::string_view fileName, const ValidationCaps& caps = {});
+
+}  // namespace refx::shader
