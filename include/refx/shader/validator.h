@@ -25,6 +25,14 @@ struct Diagnostic {
   std::string message;  // "ps_1_1 allows 8 arithmetic instructions, this shader has 9"
 };
 
+// Instruction-slot use as the version's tables count it (macros expanded, ps_1_x
+// texture vs arithmetic slots, ps_3_0 texld costs …).
+struct SlotCount {
+  int texture = 0, arithmetic = 0, flowControl = 0;
+  int total() const { return texture + arithmetic + flowControl; }
+};
+SlotCount countSlots(const Shader& shader);
+
 // All rule violations found (empty = valid).
 std::vector<Diagnostic> validate(const Shader& shader, const ValidationCaps& caps = {});
 
