@@ -1,0 +1,330 @@
+// D3D9 tokens → shader assembly text in the D3D assembler's syntax, written so the
+// assembler turns it back into the same tokens; optionally an `fxc /Fc`-style
+// listing with the constant table (CTAB comment) and the instruction-slot count.
+#include "refx/shader/disassembler.h"
+
+#include <bit>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+
+#include <fmt/format.h>
+
+
+namespace refx::shader {
+
+namespace {
+
+constexpr char kComponents[] = "xyzw";
+
+const char* const kUsageNames[] = {"position", "blendweight", "blendindices", "normal",   "psize",
+                                   "texcoord", "tangent",     "binormal",     "tessfactor", "positiont",
+                                   "color",    "fog",         "depth",        "sample"};
+
+const char* const kComparisonSuffix[] = {"", "_gt", "_eq", "_ge", "_lt", "_ne", "_le", ""};
+
+// Shift nibble as the instruction suffix (ps_1_x); index = shift + 3.
+const char* const kShiftSuffix[] = {"_d8", "_d4", "_d2", "", "_x2", "_x4", "_x8"};
+
+// Float literal with the fewest digits that reads back to the same bits.
+std::string floatText(uint32_t bits) {
+  const float f = std::bit_cast<float>(bits);
+  char buf[32];
+  for (int digits = 1; digits <= 9; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, double(f));
+    if (std::bit_cast<uint32_t>(std::strtof(buf, nullptr)) == bits) break;
+  }
+  return buf;
+}
+
+// Shortest swizzle text that the assembler expands back to `swizzle` (a short form
+// repeats its last letter): "" for .xyzw, ".x" for .xxxx, ".xy" for .xyyy.
+std::string swizzleText(uint8_t swizzle) {
+  if (swizzle == 0xE4) return "";
+  int c[4];
+  for (int i = 0; i < 4; ++i) c[i] = (swizzle >> (2 * i)) & 3;
+  int n = 4;
+  while (n > 1 && c[n - 1] == c[n - 2]) --n;
+  std::string s = ".";
+  for (int i = 0; i < n; ++i) s += kComponents[c[i]];
+  return s;
+}
+
+std::string maskText(uint8_t mask) {
+  if ((mask & 0xF) == 0xF) return "";
+  std::string s = ".";
+  for (int i = 0; i < 4; ++i)
+    if (mask & (1 << i)) s += kComponents[i];
+  return s;
+}
+
+std::string relativeText(const RelativeAddress& rel) {
+  if (rel.type == RegType::Loop) return "aL";
+  return std::string("a0.") + kComponents[rel.component & 3];
+}
+
+// `c[a0.x+3]`, `v[aL]`, or the plain register name.
+std::string registerText(RegType type, uint16_t index, bool relative, const RelativeAddress& rel,
+                         Version version) {
+  if (!relative) return registerName(type, index, version);
+  std::string s = std::string(registerTypeName(type, version)) + "[" + relativeText(rel);
+  if (index != 0) s += "+" + std::to_string(index);
+  return s + "]";
+}
+
+std::string srcText(const SrcParam& s, Version version) {
+  // vs_1_1 relative addressing is always a0.x (no address token).
+  RelativeAddress rel = version.sm2plus() ? s.rel : RelativeAddress{};
+  std::string reg = registerText(s.type, s.index, s.relative, rel, version);
+  std::string prefix, suffix;
+  switch (s.mod) {
+    case SrcMod::None: break;
+    case SrcMod::Neg: prefix = "-"; break;
+    case SrcMod::Bias: suffix = "_bias"; break;
+    case SrcMod::BiasNeg: prefix = "-", suffix = "_bias"; break;
+    case SrcMod::Sign: suffix = "_bx2"; break;
+    case SrcMod::SignNeg: prefix = "-", suffix = "_bx2"; break;
+    case SrcMod::Comp: prefix = "1-"; break;
+    case SrcMod::X2: suffix = "_x2"; break;
+    case SrcMod::X2Neg: prefix = "-", suffix = "_x2"; break;
+    case SrcMod::Dz: suffix = "_dz"; break;
+    case SrcMod::Dw: suffix = "_dw"; break;
+    case SrcMod::Abs: suffix = "_abs"; break;
+    case SrcMod::AbsNeg: prefix = "-", suffix = "_abs"; break;
+    case SrcMod::Not: prefix = "!"; break;
+  }
+  return prefix + reg + suffix + swizzleText(s.swizzle);
+}
+
+std::string dstText(const DstParam& d, Version version) {
+  return registerText(d.type, d.index, d.relative, version.sm2plus() ? d.rel : RelativeAddress{}, version) +
+         maskText(d.writeMask);
+}
+
+std::string resultModifierText(const DstParam& d) {
+  std::string s;
+  if (d.shift >= -3 && d.shift <= 3) s += kShiftSuffix[d.shift + 3];
+  else s += d.shift > 0 ? fmt::format("_x{}", 1 << d.shift) : fmt::format("_d{}", 1 << -d.shift);
+  if (d.resultMod & ResultSaturate) s += "_sat";
+  if (d.resultMod & ResultPartialPrecision) s += "_pp";
+  if (d.resultMod & ResultCentroid) s += "_centroid";
+  return s;
+}
+
+std::string dclMnemonic(const Instruction& ins, Version version) {
+  const RegType t = ins.dst.type;
+  if (t == RegType::Sampler) {
+    static const char* const types[] = {"dcl", "dcl_1d", "dcl_2d", "dcl_cube", "dcl_volume"};
+    unsigned tt = unsigned(ins.textureType);
+    return tt < 5 ? types[tt] : fmt::format("dcl_textype{}", tt);
+  }
+  // ps_2_0/2_x v#/t# and ps_3_0 vPos/vFace carry no usage: plain `dcl`.
+  const bool plain = ins.usage == DeclUsage::Position && ins.usageIndex == 0 && version.isPixel() &&
+                     (t == RegType::MiscType || (version.major < 3 && (t == RegType::Input || t == RegType::Texture)));
+  if (plain) return "dcl";
+  unsigned u = unsigned(ins.usage);
+  std::string s = "dcl_";
+  s += u < std::size(kUsageNames) ? kUsageNames[u] : fmt::format("usage{}", u);
+  if (ins.usageIndex != 0) s += std::to_string(ins.usageIndex);
+  return s;
+}
+
+std::string mnemonic(const Instruction& ins, Version version) {
+  switch (ins.opcode) {
+    case Opcode::Tex:
+      if (!version.atLeast(1, 4)) return "tex";
+      if (!version.sm2plus()) return "texld";
+      return (ins.control & 1) ? "texldp" : (ins.control & 2) ? "texldb" : "texld";
+    case Opcode::TexCoord: return version.ps1x() && version.minor == 4 ? "texcrd" : "texcoord";
+    case Opcode::IfC: return std::string("if") + kComparisonSuffix[ins.control & 7];
+    case Opcode::BreakC: return std::string("break") + kComparisonSuffix[ins.control & 7];
+    case Opcode::SetP: return std::string("setp") + kComparisonSuffix[ins.control & 7];
+    case Opcode::Dcl: return dclMnemonic(ins, version);
+    default: break;
+  }
+  const OpcodeInfo* info = findOpcode(ins.opcode);
+  return info ? info->name : fmt::format("opcode{}", unsigned(ins.opcode));
+}
+
+std::string instructionText(const Instruction& ins, Version version) {
+  std::string line;
+  if (ins.coissue) line += "+";
+  if (ins.predicated) {
+    line += ins.predicateNot ? "(!p0" : "(p0";
+    line += swizzleText(ins.predicateSwizzle) + ") ";
+  }
+  line += mnemonic(ins, version);
+  const OperandCounts counts = operandCounts(ins.opcode, version);
+  if (counts.dst) line += resultModifierText(ins.dst);
+  std::vector<std::string> ops;
+  if (counts.dst) ops.push_back(dstText(ins.dst, version));
+  switch (ins.opcode) {
+    case Opcode::Def:
+      for (uint32_t v : ins.literal) ops.push_back(floatText(v));
+      break;
+    case Opcode::DefI:
+      for (uint32_t v : ins.literal) ops.push_back(std::to_string(int32_t(v)));
+      break;
+    case Opcode::DefB: ops.push_back(ins.literal[0] ? "true" : "false"); break;
+    default:
+      for (int i = 0; i < counts.src && i < int(ins.srcCount); ++i) ops.push_back(srcText(ins.src[i], version));
+  }
+  for (size_t i = 0; i < ops.size(); ++i) line += (i == 0 ? " " : ", ") + ops[i];
+  return line;
+}
+
+// ---- CTAB (bytecode.md §8) ---------------------------------------------------------------
+
+struct CtabConstant {
+  std::string name, type;
+  int registerSet = 0, registerIndex = 0, registerCount = 0;
+};
+struct Ctab {
+  std::string creator, target;
+  std::vector<CtabConstant> constants;
+};
+
+// Bounds-checked reads from the CTAB bytes (offsets relative to the header).
+class CtabReader {
+ public:
+  explicit CtabReader(std::span<const uint32_t> payload) {
+    for (uint32_t w : payload)
+      for (int i = 0; i < 4; ++i) bytes_.push_back(uint8_t(w >> (8 * i)));
+  }
+  std::optional<uint32_t> u32(size_t off) const {
+    if (off > bytes_.size() || bytes_.size() - off < 4) return std::nullopt;
+    return uint32_t(bytes_[off]) | uint32_t(bytes_[off + 1]) << 8 | uint32_t(bytes_[off + 2]) << 16 |
+           uint32_t(bytes_[off + 3]) << 24;
+  }
+  std::optional<uint16_t> u16(size_t off) const {
+    if (off > bytes_.size() || bytes_.size() - off < 2) return std::nullopt;
+    return uint16_t(bytes_[off] | bytes_[off + 1] << 8);
+  }
+  std::optional<std::string> str(size_t off) const {
+    if (off >= bytes_.size()) return std::nullopt;
+    std::string s;
+    for (size_t i = off; i < bytes_.size() && bytes_[i] != 0 && s.size() < 256; ++i) {
+      char c = char(bytes_[i]);
+      s += (c >= 32 && c < 127) ? c : '?';
+    }
+    return s;
+  }
+
+ private:
+  std::vector<uint8_t> bytes_;
+};
+
+std::string ctabTypeName(const CtabReader& r, uint32_t off) {
+  auto cls = r.u16(off), type = r.u16(off + 2), rows = r.u16(off + 4), cols = r.u16(off + 6),
+       elems = r.u16(off + 8);
+  if (!cls || !type || !rows || !cols || !elems) return "?";
+  static const char* const kTypes[] = {"void",      "bool",      "int",       "float",       "string",
+                                       "texture",   "texture1D", "texture2D", "texture3D",   "textureCUBE",
+                                       "sampler",   "sampler1D", "sampler2D", "sampler3D",   "samplerCUBE",
+                                       "pixelshader", "vertexshader", "pixelfragment", "vertexfragment"};
+  std::string s;
+  if (*cls == 5) s = "struct";
+  else s = *type < std::size(kTypes) ? kTypes[*type] : fmt::format("type{}", *type);
+  if (*cls == 1) s += std::to_string(*cols);                                   // vector
+  else if (*cls == 2 || *cls == 3) s += fmt::format("{}x{}", *rows, *cols);  // matrix
+  if (*cls == 2) s = "row_major " + s;
+  if (*elems > 1) s += fmt::format("[{}]", *elems);
+  return s;
+}
+
+std::optional<Ctab> parseCtab(const std::vector<uint32_t>& comment) {
+  if (comment.empty() || comment[0] != 0x42415443u) return std::nullopt;  // 'CTAB'
+  CtabReader r(std::span<const uint32_t>(comment).subspan(1));
+  auto size = r.u32(0), creator = r.u32(4), count = r.u32(12), info = r.u32(16), target = r.u32(24);
+  if (!size || !creator || !count || !info || !target) return std::nullopt;
+  Ctab t;
+  t.creator = r.str(*creator).value_or("");
+  t.target = r.str(*target).value_or("");
+  for (uint32_t i = 0; i < *count && i < 4096; ++i) {
+    const size_t at = size_t(*info) + 20 * size_t(i);
+    auto name = r.u32(at);
+    auto set = r.u16(at + 4), index = r.u16(at + 6), regs = r.u16(at + 8);
+    auto typeInfo = r.u32(at + 12);
+    if (!name || !set || !index || !regs || !typeInfo) break;
+    CtabConstant c;
+    c.name = r.str(*name).value_or("?");
+    c.type = ctabTypeName(r, *typeInfo);
+    c.registerSet = *set;
+    c.registerIndex = *index;
+    c.registerCount = *regs;
+    t.constants.push_back(std::move(c));
+  }
+  return t;
+}
+
+std::string fourcc(uint32_t v) {
+  std::string s;
+  for (int i = 0; i < 4; ++i) {
+    char c = char(v >> (8 * i));
+    s += (c >= 32 && c < 127) ? c : '.';
+  }
+  return s;
+}
+
+void appendCtabHeader(std::string& out, const Ctab& t) {
+  if (!t.creator.empty()) out += "// Generated by " + t.creator + "\n//\n";
+  if (t.constants.empty()) return;
+  out += "// Parameters:\n//\n";
+  for (const CtabConstant& c : t.constants) out += "//   " + c.type + " " + c.name + ";\n";
+  out += "//\n//\n// Registers:\n//\n";
+  size_t width = 4;
+  for (const CtabConstant& c : t.constants) width = std::max(width, c.name.size());
+  out += fmt::format("//   {:<{}} Reg   Size\n", "Name", width);
+  out += fmt::format("//   {} ----- ----\n", std::string(width, '-'));
+  static const char kSetLetter[] = {'b', 'i', 'c', 's'};
+  for (const CtabConstant& c : t.constants) {
+    std::string reg = (c.registerSet >= 0 && c.registerSet < 4 ? std::string(1, kSetLetter[c.registerSet]) : "?") +
+                      std::to_string(c.registerIndex);
+    out += fmt::format("//   {:<{}} {:<5} {:>4}\n", c.name, width, reg, c.registerCount);
+  }
+  out += "//\n";
+}
+
+}  // namespace
+
+std::string disassemble(const Shader& shader, const DisassemblyOptions& options) {
+  const Version v = shader.version;
+  const char* indent = options.listing ? "    " : "";
+  std::string out;
+  if (options.listing) {
+    out += "//\n";
+    bool ctab = false;
+    for (const Instruction& ins : shader.instructions) {
+      if (ins.opcode != Opcode::Comment) continue;
+      if (auto t = parseCtab(ins.comment)) {
+        appendCtabHeader(out, *t);
+        ctab = true;
+        break;
+      }
+    }
+    if (!ctab) out += "// " + v.name() + ", no constant table\n//\n";
+    out += "\n";
+  }
+  out += indent + v.name() + "\n";
+  for (const Instruction& ins : shader.instructions) {
+    if (ins.opcode == Opcode::Comment) {
+      // Comments carry no code; the listing notes where they were.
+      if (options.listing && !parseCtab(ins.comment))
+        out += fmt::format("{}// comment block '{}', {} DWORDs\n", indent,
+                           ins.comment.empty() ? std::string() : fourcc(ins.comment[0]), ins.comment.size());
+      continue;
+    }
+    if (ins.opcode == Opcode::Phase) {
+      out += indent + std::string("phase\n");
+      continue;
+    }
+    out += indent + instructionText(ins, v) + "\n";
+  }
+  return out;
+}
+
+std::string disassemble(std::span<const uint32_t> tokens, const DisassemblyOptions& options) {
+  return disassemble(decode(tokens), options);
+}
+
+}  // namespace refx::shader
