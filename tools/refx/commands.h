@@ -16,6 +16,7 @@ Action addReplayCommand(CLI::App& app);
 Action addGalleryCommand(CLI::App& app);
 Action addBenchCommand(CLI::App& app);
 Action addAssetCommand(CLI::App& app);
+Action addDisasmCommand(CLI::App& app);
 
 // True when stderr is a terminal (progress display).
 bool stderrIsTerminal();
