@@ -18,17 +18,6 @@ void BatchRegistersResize(BatchRegisters& r, const Program& p) {
   r.outputs.resize(std::max(p.outputCount, 1));
 }
 
-// Returns the lane array of component `c` of a lane-varying register, or nullptr
-// for uniform files.
-inline const float* laneBase(const BatchRegisters& regs, RegFile f, int index, int c) {
-  switch (f) {
-    case RegFile::Temp: return regs.temps[index].c[c];
-    case RegFile::Input: return regs.inputs[index].c[c];
-    case RegFile::Output: return regs.outputs[index].c[c];
-    default: return nullptr;
-  }
-}
-
 inline float applyMod(float x, SrcMod m) {
   switch (m) {
     case SrcMod::None: return x;
@@ -52,43 +41,111 @@ struct Operand {
   const float* c[4];
 };
 
+alignas(64) const float kZeroLanes[4][N] = {};
+
+// Value of register `index` of a uniform file (relative indices may be anything).
+inline Vec4 uniformValue(const Src& s, int index, const ExecContext& ctx, const Program& p) {
+  Vec4 v{0, 0, 0, 0};
+  switch (s.file) {
+    case RegFile::Imm:
+      if (index >= 0 && size_t(index) < p.immediates.size()) v = p.immediates[index];
+      break;
+    case RegFile::Const:
+      // Local (def) constants override the API's for the shader's lifetime.
+      if (index >= 0 && size_t(index) < p.localConstants.size() && p.localConstants[index] >= 0)
+        v = p.immediates[size_t(p.localConstants[index])];
+      else if (index >= 0 && index < ctx.constantCount)
+        v = ctx.constants[index];
+      break;
+    case RegFile::ConstInt:
+      if (index >= 0 && index < ctx.intConstantCount && ctx.intConstants) {
+        const auto& i = ctx.intConstants[index];
+        v = Vec4(float(i[0]), float(i[1]), float(i[2]), float(i[3]));
+      }
+      break;
+    case RegFile::ConstBool:
+      if (index >= 0 && index < ctx.boolConstantCount && ctx.boolConstants && ctx.boolConstants[index])
+        v = Vec4(1, 1, 1, 1);
+      break;
+    default: break;
+  }
+  if (s.flags & kSrcClampUnit)
+    for (int c = 0; c < 4; ++c) v[c] = std::min(std::max(v[c], -1.0f), 1.0f);
+  return v;
+}
+
+inline bool isUniformFile(RegFile f) {
+  return f == RegFile::Const || f == RegFile::Imm || f == RegFile::ConstInt || f == RegFile::ConstBool;
+}
+
+inline const LaneVec4* laneRegister(const BatchRegisters& regs, RegFile f, int index) {
+  const std::vector<LaneVec4>* v = f == RegFile::Temp    ? &regs.temps
+                                   : f == RegFile::Input ? &regs.inputs
+                                   : f == RegFile::Output ? &regs.outputs
+                                                          : nullptr;
+  if (!v || index < 0 || size_t(index) >= v->size()) return nullptr;
+  return &(*v)[size_t(index)];
+}
+
+// Relative source: per-lane register index, then the same swizzle and modifier.
+void fetchRelative(const Src& s, const BatchRegisters& regs, const ExecContext& ctx,
+                   const Program& p, float (*scratch)[N], Operand& o) {
+  int index[N];
+  if (s.rel == RelMode::Loop) {
+    for (int l = 0; l < N; ++l) index[l] = s.index + regs.loopCounter;
+  } else {
+    const LaneVec4* a = laneRegister(regs, RegFile::Temp, s.relReg);
+    for (int l = 0; l < N; ++l) index[l] = s.index + (a ? int(a->c[s.relComp & 3][l]) : 0);
+  }
+  const bool uniform = isUniformFile(s.file);
+  for (int l = 0; l < N; ++l) {
+    Vec4 v{0, 0, 0, 0};
+    if (uniform) {
+      v = uniformValue(s, index[l], ctx, p);
+    } else if (index[l] >= s.relLo && index[l] < s.relHi) {
+      if (const LaneVec4* r = laneRegister(regs, s.file, index[l]))
+        v = Vec4(r->c[0][l], r->c[1][l], r->c[2][l], r->c[3][l]);
+    }
+    for (int c = 0; c < 4; ++c) scratch[c][l] = applyMod(v[(s.swizzle >> (2 * c)) & 3], s.mod);
+  }
+  for (int c = 0; c < 4; ++c) o.c[c] = scratch[c];
+}
+
 inline void fetch(const Src& s, const BatchRegisters& regs, const ExecContext& ctx,
                   const Program& p, float (*scratch)[N], Operand& o) {
-  bool uniform = s.file == RegFile::Const || s.file == RegFile::Imm;
-  if (!uniform && s.mod == SrcMod::None) {
-    const LaneVec4* base = s.file == RegFile::Temp    ? &regs.temps[s.index]
-                           : s.file == RegFile::Input ? &regs.inputs[s.index]
-                                                      : &regs.outputs[s.index];
-    o.c[0] = base->c[s.swizzle & 3];
-    o.c[1] = base->c[(s.swizzle >> 2) & 3];
-    o.c[2] = base->c[(s.swizzle >> 4) & 3];
-    o.c[3] = base->c[(s.swizzle >> 6) & 3];
+  if (s.rel != RelMode::None) {
+    fetchRelative(s, regs, ctx, p, scratch, o);
     return;
   }
-  if (uniform) {
-    Vec4 v{0, 0, 0, 0};
-    if (s.file == RegFile::Imm) {
-      if (s.index < p.immediates.size()) v = p.immediates[s.index];
-    } else if (s.index < ctx.constantCount) {
-      v = ctx.constants[s.index];
+  const bool uniform = isUniformFile(s.file);
+  if (!uniform) {
+    const LaneVec4* base = laneRegister(regs, s.file, s.index);
+    if (!base) base = reinterpret_cast<const LaneVec4*>(kZeroLanes);
+    if (s.mod == SrcMod::None) {
+      o.c[0] = base->c[s.swizzle & 3];
+      o.c[1] = base->c[(s.swizzle >> 2) & 3];
+      o.c[2] = base->c[(s.swizzle >> 4) & 3];
+      o.c[3] = base->c[(s.swizzle >> 6) & 3];
+      return;
     }
     for (int c = 0; c < 4; ++c) {
-      float x = applyMod(v[(s.swizzle >> (2 * c)) & 3], s.mod);
-      for (int l = 0; l < N; ++l) scratch[c][l] = x;
-      o.c[c] = scratch[c];
+      const float* b = base->c[(s.swizzle >> (2 * c)) & 3];
+      float* d = scratch[c];
+      switch (s.mod) {
+        case SrcMod::Neg: for (int l = 0; l < N; ++l) d[l] = -b[l]; break;
+        case SrcMod::Comp: for (int l = 0; l < N; ++l) d[l] = 1.0f - b[l]; break;
+        case SrcMod::Sign: for (int l = 0; l < N; ++l) d[l] = 2.0f * (b[l] - 0.5f); break;
+        default: for (int l = 0; l < N; ++l) d[l] = applyMod(b[l], s.mod); break;
+      }
+      o.c[c] = d;
     }
     return;
   }
+  const Vec4 v = uniformValue(s, s.index, ctx, p);
   for (int c = 0; c < 4; ++c) {
-    const float* b = laneBase(regs, s.file, s.index, (s.swizzle >> (2 * c)) & 3);
-    float* d = scratch[c];
-    switch (s.mod) {
-      case SrcMod::Neg: for (int l = 0; l < N; ++l) d[l] = -b[l]; break;
-      case SrcMod::Comp: for (int l = 0; l < N; ++l) d[l] = 1.0f - b[l]; break;
-      case SrcMod::Sign: for (int l = 0; l < N; ++l) d[l] = 2.0f * (b[l] - 0.5f); break;
-      default: for (int l = 0; l < N; ++l) d[l] = applyMod(b[l], s.mod); break;
-    }
-    o.c[c] = d;
+    float x = applyMod(v[(s.swizzle >> (2 * c)) & 3], s.mod);
+    for (int l = 0; l < N; ++l) scratch[c][l] = x;
+    o.c[c] = scratch[c];
   }
 }
 
@@ -119,13 +176,15 @@ inline v8f splat8(float x) { return v8f{x, x, x, x, x, x, x, x}; }
 inline v8f vmin(v8f a, v8f b) { return a < b ? a : b; }
 inline v8f vmax(v8f a, v8f b) { return a > b ? a : b; }
 
-void sample(const Instr& in, const Operand& coord, const ExecContext& ctx, uint16_t laneMask,
+void sample(const Instr& in, const Operand* src, const ExecContext& ctx, uint16_t laneMask,
             float (*out)[N]) {
-  alignas(64) float co[4][N];
+  alignas(64) float co[12][N];
   const float(*cp)[N] = co;
+  const Operand& coord = src[0];
   // Coordinates read in place when they are one register's .xyzw.
-  const bool inPlace = in.op != Op::TexProj && coord.c[1] == coord.c[0] + N &&
-                       coord.c[2] == coord.c[0] + 2 * N && coord.c[3] == coord.c[0] + 3 * N;
+  const bool inPlace = in.op != Op::TexProj && in.op != Op::TexGrad &&
+                       coord.c[1] == coord.c[0] + N && coord.c[2] == coord.c[0] + 2 * N &&
+                       coord.c[3] == coord.c[0] + 3 * N;
   if (inPlace) cp = reinterpret_cast<const float(*)[N]>(coord.c[0]);
   else
     for (int c = 0; c < 4; ++c) std::memcpy(co[c], coord.c[c], sizeof(co[c]));
@@ -142,6 +201,13 @@ void sample(const Instr& in, const Operand& coord, const ExecContext& ctx, uint1
       break;
     case Op::TexBias: mode = SampleMode::Bias; break;
     case Op::TexLod: mode = SampleMode::Lod; break;
+    case Op::TexGrad:
+      mode = SampleMode::Grad;
+      for (int c = 0; c < 4; ++c) {
+        std::memcpy(co[4 + c], src[1].c[c], sizeof(co[c]));
+        std::memcpy(co[8 + c], src[2].c[c], sizeof(co[c]));
+      }
+      break;
     default: break;
   }
   if (in.sampler < ctx.samplerCount && ctx.samplers[in.sampler].sample) {
@@ -154,22 +220,59 @@ void sample(const Instr& in, const Operand& coord, const ExecContext& ctx, uint1
   }
 }
 
+// D3DSHADER_COMPARISON (0: always true).
+inline bool compare(uint8_t cmp, float a, float b) {
+  switch (cmp) {
+    case 1: return a > b;
+    case 2: return a == b;
+    case 3: return a >= b;
+    case 4: return a < b;
+    case 5: return a != b;
+    case 6: return a <= b;
+    default: return true;
+  }
+}
+
+// Result rounded to multiples of 2^-bits (fixed point of `bits` fractional bits).
+inline V16 quantize(V16 r, int bits) {
+  alignas(32) float t[N];
+  store(t, r);
+  const float k = std::ldexp(1.0f, bits), ik = std::ldexp(1.0f, -bits);
+  for (int l = 0; l < N; ++l) t[l] = std::nearbyint(t[l] * k) * ik;
+  return load(t);
+}
+
 }  // namespace
 
 void BatchRegisters::resize(const Program& p) { BatchRegistersResize(*this, p); }
 
 namespace {
 
+constexpr int kOpCount = int(Op::Ret) + 1;
+
 // Source counts by op, looked up once.
 const std::array<uint8_t, 256> kSources = [] {
   std::array<uint8_t, 256> t{};
-  for (int op = 0; op <= int(Op::Kill); ++op) t[op] = uint8_t(sourceCount(Op(op)));
+  for (int op = 0; op < kOpCount; ++op) t[op] = uint8_t(sourceCount(Op(op)));
   return t;
 }();
+
+inline bool isFlowOp(Op op) { return op >= Op::If && op <= Op::Ret; }
+
+// The destination register of `in` (nullptr: none, or a relative index out of range).
+LaneVec4* destination(const Instr& in, BatchRegisters& regs) {
+  int index = in.dst.index;
+  if (in.dst.rel == RelMode::Loop) {
+    index += regs.loopCounter;
+    if (index < in.dst.relLo || index >= in.dst.relHi) return nullptr;
+  }
+  return const_cast<LaneVec4*>(laneRegister(regs, in.dst.file, index));
+}
 
 // One instruction, decoded as it runs: the reference path for every op and operand.
 void executeInstr(const Instr& in, const Program& program, const ExecContext& ctx,
                   BatchRegisters& regs) {
+  if (isFlowOp(in.op)) return;  // run by executeFlow
   alignas(64) float scratch[3][4][N];
   alignas(64) float res[4][N];
   {
@@ -178,14 +281,16 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
     bool alias = false;  // the destination is also a source: stage results in res
     for (int i = 0; i < nsrc; ++i) {
       fetch(in.src[i], regs, ctx, program, scratch[i], s[i]);
-      alias |= in.src[i].file == in.dst.file && in.src[i].index == in.dst.index;
+      alias |= in.src[i].file == in.dst.file &&
+               (in.src[i].index == in.dst.index || in.src[i].rel != RelMode::None ||
+                in.dst.rel != RelMode::None);
     }
-    const uint8_t mask = in.dst.mask;
-    LaneVec4* dstReg = in.dst.file == RegFile::Temp    ? &regs.temps[in.dst.index]
-                       : in.dst.file == RegFile::Input ? &regs.inputs[in.dst.index]
-                       : in.dst.file == RegFile::Output ? &regs.outputs[in.dst.index]
-                                                        : nullptr;
-    // Result modifiers: shift, then saturate or clamp to the version's range.
+    uint8_t mask = in.dst.mask;
+    LaneVec4* dstReg = destination(in, regs);
+    const uint16_t execMask = regs.execMask;
+    const bool allLanes = execMask == 0xffff;
+    // Result modifiers: shift, then saturate or clamp to the version's range, then
+    // the fixed-point grid of the hardware precision model.
     const bool clampResult = in.saturate || in.clamp;
     const v8f scale = splat8(in.shift == 0 ? 1.0f : std::ldexp(1.0f, in.shift));
     const v8f lo = splat8(in.saturate ? 0.0f : in.clampLo), hi = splat8(in.saturate ? 1.0f : in.clampHi);
@@ -193,10 +298,22 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
       if (in.shift != 0) r = lanes([&](int h) { return part(r, h) * scale; });
       // Clamp with NaN -> lo (D3D saturates NaN to 0).
       if (clampResult) r = lanes([&](int h) { return vmin(vmax(part(r, h), lo), hi); });
+      if (in.quantize) r = quantize(r, in.quantize);
       return r;
     };
+    // Lanes outside the execution mask keep their values.
+    auto put = [&](float* d, const V16& r) {
+      if (allLanes) {
+        store(d, r);
+        return;
+      }
+      alignas(32) float t[N];
+      store(t, r);
+      for (int l = 0; l < N; ++l)
+        if (execMask >> l & 1) d[l] = t[l];
+    };
     // Without aliasing, results go straight to the destination.
-    const bool direct = !alias && dstReg;
+    const bool direct = !alias && dstReg && allLanes;
     auto emit = [&](int c, const V16& r) {
       if (direct) store(dstReg->c[c], modify(r));
       else store(res[c], r);
@@ -299,7 +416,7 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
         });
         break;
       case Op::Pow:
-        // D3D pow: |x|^y.
+        // D3D pow: |x|^y (pow(0, 0) = 1).
         each([&](int c, float* r) {
           for (int l = 0; l < N; ++l) r[l] = std::pow(std::fabs(s[0].c[c][l]), s[1].c[c][l]);
         });
@@ -317,11 +434,12 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
         each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = std::fabs(s[0].c[c][l]); });
         break;
       case Op::Nrm: {
+        // D3D nrm scales all four components; a zero vector gives (0, 0, 0, w).
         float k[N];
         for (int l = 0; l < N; ++l) {
           float d = s[0].c[0][l] * s[0].c[0][l] + s[0].c[1][l] * s[0].c[1][l] +
                     s[0].c[2][l] * s[0].c[2][l];
-          k[l] = 1.0f / std::sqrt(d);
+          k[l] = d == 0.0f ? 1.0f : 1.0f / std::sqrt(d);
         }
         each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l] * k[l]; });
         break;
@@ -330,17 +448,16 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
       case Op::TexProj:
       case Op::TexBias:
       case Op::TexLod:
-        if (direct && mask == 0xF && in.shift == 0 && !clampResult) {
-          sample(in, s[0], ctx, regs.laneMask, dstReg->c);
+      case Op::TexGrad: {
+        const uint16_t live = uint16_t(regs.laneMask & execMask);
+        if (direct && mask == 0xF && in.shift == 0 && !clampResult && !in.quantize) {
+          sample(in, s, ctx, live, dstReg->c);
           return;
         }
-        sample(in, s[0], ctx, regs.laneMask, res);
-        if (direct) {
-          for (int c = 0; c < 4; ++c)
-            if (mask & (1 << c)) store(dstReg->c[c], modify(load(res[c])));
-          return;
-        }
+        sample(in, s, ctx, live, res);
+        staged = true;
         break;
+      }
       case Op::Kill: {
         uint16_t killed = 0;
         for (int c = 0; c < 4; ++c) {
@@ -348,15 +465,245 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
           for (int l = 0; l < N; ++l)
             if (s[0].c[c][l] < 0.0f) killed |= uint16_t(1u << l);
         }
-        regs.laneMask &= uint16_t(~killed);
+        regs.laneMask &= uint16_t(~(killed & execMask));
         return;  // no register result
       }
+      case Op::Floor:
+        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = std::floor(s[0].c[c][l]); });
+        break;
+      case Op::Round:
+        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = std::nearbyint(s[0].c[c][l]); });
+        break;
+      case Op::Lit:
+        each([&](int c, float* r) {
+          for (int l = 0; l < N; ++l) {
+            const float x = s[0].c[0][l], y = s[0].c[1][l];
+            // The power is limited to the 8.8 fixed-point range of the era's hardware.
+            const float w = std::min(std::max(s[0].c[3][l], -127.9961f), 127.9961f);
+            r[l] = c == 0 || c == 3 ? 1.0f
+                   : c == 1         ? (x > 0 ? x : 0.0f)
+                                    : (x > 0 && y > 0 ? std::pow(y, w) : 0.0f);
+          }
+        });
+        break;
+      case Op::Dist:
+        each([&](int c, float* r) {
+          for (int l = 0; l < N; ++l)
+            r[l] = c == 0 ? 1.0f
+                   : c == 1 ? s[0].c[1][l] * s[1].c[1][l]
+                   : c == 2 ? s[0].c[2][l]
+                            : s[1].c[3][l];
+        });
+        break;
+      case Op::Crs:
+        mask &= 0x7;
+        each([&](int c, float* r) {
+          const int i = (c + 1) % 3, j = (c + 2) % 3;
+          for (int l = 0; l < N; ++l) r[l] = s[0].c[i][l] * s[1].c[j][l] - s[0].c[j][l] * s[1].c[i][l];
+        });
+        break;
+      case Op::Sgn:
+        each([&](int c, float* r) {
+          for (int l = 0; l < N; ++l) {
+            const float v = s[0].c[c][l];
+            r[l] = v < 0 ? -1.0f : v > 0 ? 1.0f : 0.0f;
+          }
+        });
+        break;
+      case Op::SinCos:
+        mask &= 0x3;
+        each([&](int c, float* r) {
+          for (int l = 0; l < N; ++l) r[l] = c == 0 ? std::cos(s[0].c[0][l]) : std::sin(s[0].c[0][l]);
+        });
+        break;
+      case Op::ExpP:
+        each([&](int c, float* r) {
+          for (int l = 0; l < N; ++l) {
+            const float v = s[0].c[0][l], f = std::floor(v);
+            r[l] = c == 0 ? std::exp2(f) : c == 1 ? v - f : c == 2 ? std::exp2(v) : 1.0f;
+          }
+        });
+        break;
+      case Op::Quot:
+        each([&](int c, float* r) {
+          for (int l = 0; l < N; ++l) {
+            const float d = s[1].c[c][l];
+            r[l] = d == 0.0f ? 1.0f : s[0].c[c][l] / d;
+          }
+        });
+        break;
+      case Op::SetP:
+        each([&](int c, float* r) {
+          for (int l = 0; l < N; ++l) r[l] = compare(in.cmp, s[0].c[c][l], s[1].c[c][l]) ? 1.0f : 0.0f;
+        });
+        break;
+      case Op::Dsx:
+      case Op::Dsy: {
+        // lane = quad*4 + (y&1)*2 + (x&1): x pairs differ in bit 0, y pairs in bit 1.
+        const int bit = in.op == Op::Dsx ? 1 : 2;
+        each([&](int c, float* r) {
+          for (int l = 0; l < N; ++l) r[l] = s[0].c[c][l | bit] - s[0].c[c][l & ~bit];
+        });
+        break;
+      }
+      default:
+        return;
     }
     if (!dstReg || !staged) return;
-    // Results staged in res (aliasing, or ops written per lane): modifiers and store.
+    // Results staged in res (aliasing, masked lanes, or ops written per lane):
+    // modifiers and store.
     for (int c = 0; c < 4; ++c)
-      if (mask & (1 << c)) store(dstReg->c[c], modify(load(res[c])));
+      if (mask & (1 << c)) put(dstReg->c[c], modify(load(res[c])));
   }
+}
+
+// Lanes (of the execution mask) meeting the condition of an If/Break/Call.
+uint16_t condition(const Instr& in, const Program& program, const ExecContext& ctx,
+                   const BatchRegisters& regs) {
+  if (in.cmp == 0) return 0xffff;
+  alignas(64) float scratch[2][4][N];
+  Operand a, b;
+  fetch(in.src[0], regs, ctx, program, scratch[0], a);
+  fetch(in.src[1], regs, ctx, program, scratch[1], b);
+  uint16_t m = 0;
+  for (int l = 0; l < N; ++l) m |= uint16_t(compare(in.cmp, a.c[0][l], b.c[0][l]) ? 1u << l : 0u);
+  return m;
+}
+
+// Programs with flow control: structured control on per-lane execution masks.
+// Loop counts and aL are uniform (int constants); conditions may vary per lane.
+void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  enum class Kind : uint8_t { If, Loop, Call };
+  struct Frame {
+    Kind kind;
+    uint16_t saved;   // execution mask on entry
+    uint16_t taken;   // If: lanes that took the branch
+    int remaining;    // Loop: passes left
+    int step;         // Loop: aL increment (0 for rep)
+    int savedCounter; // Loop: aL of the enclosing loop
+    int pc;           // Loop: the Rep/Loop instruction; Call: return address
+  };
+  constexpr int kMaxDepth = 64, kMaxCallDepth = 8;
+  Frame stack[kMaxDepth];
+  int depth = 0, calls = 0;
+  uint16_t& exec = regs.execMask;
+  exec = 0xffff;
+  const std::vector<Instr>& code = program.code;
+  const int n = int(code.size());
+  int pc = 0;
+  for (long budget = kMaxExecutedInstructions; pc >= 0 && pc < n && budget > 0; --budget) {
+    const Instr& in = code[size_t(pc)];
+    switch (in.op) {
+      case Op::If: {
+        if (depth == kMaxDepth) { pc = n; break; }
+        const uint16_t cond = condition(in, program, ctx, regs);
+        stack[depth++] = Frame{Kind::If, exec, uint16_t(exec & cond), 0, 0, 0, pc};
+        exec &= cond;
+        pc = exec ? pc + 1 : in.target;  // the Else (which switches) or the EndIf
+        break;
+      }
+      case Op::Else:
+        if (depth && stack[depth - 1].kind == Kind::If) {
+          exec = uint16_t(stack[depth - 1].saved & ~stack[depth - 1].taken);
+          pc = exec ? pc + 1 : in.target;
+        } else {
+          ++pc;
+        }
+        break;
+      case Op::EndIf:
+        if (depth && stack[depth - 1].kind == Kind::If) exec = stack[--depth].saved;
+        ++pc;
+        break;
+      case Op::Rep:
+      case Op::Loop: {
+        alignas(64) float scratch[4][N];
+        Operand a;
+        fetch(in.src[0], regs, ctx, program, scratch, a);
+        // Counts and start are bytes in D3D (0..255), the step a signed byte.
+        const int count = std::clamp(int(a.c[0][0]), 0, 255);
+        if (count == 0 || !exec || depth == kMaxDepth) {
+          pc = in.target + 1;
+          break;
+        }
+        const bool loop = in.op == Op::Loop;
+        stack[depth++] = Frame{Kind::Loop, exec, 0, count, loop ? std::clamp(int(a.c[2][0]), -128, 127) : 0,
+                               regs.loopCounter, pc};
+        if (loop) regs.loopCounter = std::clamp(int(a.c[1][0]), 0, 255);
+        ++pc;
+        break;
+      }
+      case Op::EndRep:
+      case Op::EndLoop: {
+        if (!depth || stack[depth - 1].kind != Kind::Loop) {
+          ++pc;
+          break;
+        }
+        Frame& f = stack[depth - 1];
+        regs.loopCounter += f.step;
+        if (--f.remaining > 0 && exec) {
+          pc = f.pc + 1;
+        } else {
+          exec = f.saved;  // lanes that left by break join again
+          regs.loopCounter = f.savedCounter;
+          --depth;
+          ++pc;
+        }
+        break;
+      }
+      case Op::Break: {
+        int loop = depth - 1;
+        while (loop >= 0 && stack[loop].kind == Kind::If) --loop;
+        if (loop < 0 || stack[loop].kind != Kind::Loop) {
+          ++pc;
+          break;
+        }
+        const uint16_t leave = uint16_t(exec & condition(in, program, ctx, regs));
+        exec &= uint16_t(~leave);
+        for (int k = loop + 1; k < depth; ++k) {
+          stack[k].saved &= uint16_t(~leave);
+          stack[k].taken &= uint16_t(~leave);
+        }
+        if (!exec) {
+          depth = loop + 1;
+          pc = code[size_t(stack[loop].pc)].target;  // the EndRep/EndLoop: leaves the loop
+        } else {
+          ++pc;
+        }
+        break;
+      }
+      case Op::Call: {
+        const uint16_t lanesIn = uint16_t(exec & condition(in, program, ctx, regs));
+        if (!lanesIn || calls == kMaxCallDepth || depth == kMaxDepth || in.target < 0) {
+          ++pc;
+          break;
+        }
+        stack[depth++] = Frame{Kind::Call, exec, 0, 0, 0, 0, pc + 1};
+        ++calls;
+        exec = lanesIn;
+        pc = in.target;
+        break;
+      }
+      case Op::Ret: {
+        int f = depth - 1;
+        while (f >= 0 && stack[f].kind != Kind::Call) --f;
+        if (f < 0) {
+          pc = n;  // end of the main program
+          break;
+        }
+        exec = stack[f].saved;
+        pc = stack[f].pc;
+        depth = f;
+        --calls;
+        break;
+      }
+      default:
+        if (exec) executeInstr(in, program, ctx, regs);
+        ++pc;
+        break;
+    }
+  }
+  exec = 0xffff;
+  regs.loopCounter = 0;
 }
 
 // ---------------------------------------------------------------- prepared programs
@@ -372,6 +719,11 @@ struct Step {
   const float* src[3][4];  // per source and component (swizzle applied)
   float* dst[4];           // written components, nullptr otherwise
   float scale, lo, hi;     // result modifiers
+  int quantize;            // fixed-point grid (0: none)
+  // Source modifiers of lane-varying sources as v * modScale + modOffset (the
+  // ps_1_x set is affine; the same roundings as applyMod).
+  uint8_t modded;          // bit i: source i has a modifier
+  float modScale[3], modOffset[3];
 };
 
 // The reference path for ops and operands without a specialised routine.
@@ -379,12 +731,24 @@ void runGeneric(const Step& s, const ExecContext& ctx, BatchRegisters& regs) {
   executeInstr(*s.in, *s.program, ctx, regs);
 }
 
+// Source i, component c, with its modifier.
+inline V16 loadSrc(const Step& s, int i, int c) {
+  V16 v = load(s.src[i][c]);
+  if (s.modded >> i & 1) {
+    const v8f k = splat8(s.modScale[i]);
+    if (s.modOffset[i] == 0.0f) return lanes([&](int h) { return part(v, h) * k; });
+    const v8f o = splat8(s.modOffset[i]);
+    return lanes([&](int h) { return part(v, h) * k + o; });
+  }
+  return v;
+}
+
 template <Op O>
 inline V16 compute(const Step& s, int c) {
-  auto src = [&](int i) { return load(s.src[i][c]); };
+  auto src = [&](int i) { return loadSrc(s, i, c); };
   auto dot = [&](int n) {
     V16 a[4], b[4];
-    for (int k = 0; k < n; ++k) a[k] = load(s.src[0][k]), b[k] = load(s.src[1][k]);
+    for (int k = 0; k < n; ++k) a[k] = loadSrc(s, 0, k), b[k] = loadSrc(s, 1, k);
     return lanes([&](int h) {
       v8f r = part(a[0], h) * part(b[0], h) + part(a[1], h) * part(b[1], h);
       for (int k = 2; k < n; ++k) r += part(a[k], h) * part(b[k], h);
@@ -426,6 +790,7 @@ void runArith(const Step& s, const ExecContext&, BatchRegisters&) {
     V16 v = r[c];
     if constexpr (Shift) v = lanes([&](int h) { return part(v, h) * scale; });
     if constexpr (Clamp) v = lanes([&](int h) { return vmin(vmax(part(v, h), lo), hi); });
+    if (s.quantize) v = quantize(v, s.quantize);
     store(s.dst[c], v);
   }
 }
@@ -481,7 +846,26 @@ struct PreparedProgram {
   std::vector<LaneVec4> uniforms;  // constant and immediate operands, splat over the lanes
 };
 
+// Affine form of a source modifier: v * scale + offset (false: not affine).
+static bool affineMod(SrcMod m, float& scale, float& offset) {
+  static const struct { SrcMod m; float scale, offset; } kAffine[] = {
+      {SrcMod::Neg, -1, 0},     {SrcMod::Bias, 1, -0.5f}, {SrcMod::BiasNeg, -1, 0.5f},
+      {SrcMod::Sign, 2, -1},    {SrcMod::SignNeg, -2, 1}, {SrcMod::Comp, -1, 1},
+      {SrcMod::X2, 2, 0},       {SrcMod::X2Neg, -2, 0},
+  };
+  for (const auto& a : kAffine)
+    if (a.m == m) {
+      scale = a.scale, offset = a.offset;
+      return true;
+    }
+  return false;
+}
+
 void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  if (program.flowControl) {  // runs on execution masks: decoded as it runs
+    regs.prepared.reset();
+    return;
+  }
   auto pp = std::make_shared<PreparedProgram>();
   pp->program = &program;
   pp->code = program.code.data();
@@ -489,7 +873,8 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
   size_t uniformCount = 0;
   for (const Instr& in : program.code)
     for (int i = 0; i < kSources[uint8_t(in.op)]; ++i)
-      uniformCount += in.src[i].file == RegFile::Const || in.src[i].file == RegFile::Imm;
+      uniformCount += (in.src[i].file == RegFile::Const || in.src[i].file == RegFile::Imm) &&
+                      in.src[i].rel == RelMode::None;
   pp->uniforms.resize(uniformCount);
   size_t nextUniform = 0;
   for (const Instr& in : program.code) {
@@ -500,18 +885,17 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
     pp->steps.push_back(st);
     Step& s = pp->steps.back();
     const int nsrc = kSources[uint8_t(in.op)];
-    bool resolved = true;
+    bool resolved = in.dst.rel == RelMode::None;
     for (int i = 0; i < nsrc; ++i) {
       const Src& src = in.src[i];
+      if (src.rel != RelMode::None) {
+        resolved = false;
+        continue;
+      }
       if (src.file == RegFile::Const || src.file == RegFile::Imm) {
         // fetch() expands these per batch; the values are fixed for the draw.
         LaneVec4& u = pp->uniforms[nextUniform++];
-        Vec4 v{0, 0, 0, 0};
-        if (src.file == RegFile::Imm) {
-          if (src.index < program.immediates.size()) v = program.immediates[src.index];
-        } else if (src.index < ctx.constantCount) {
-          v = ctx.constants[src.index];
-        }
+        const Vec4 v = uniformValue(src, src.index, ctx, program);
         for (int c = 0; c < 4; ++c) {
           const float x = applyMod(v[(src.swizzle >> (2 * c)) & 3], src.mod);
           for (int l = 0; l < N; ++l) u.c[c][l] = x;
@@ -519,7 +903,10 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
         }
         continue;
       }
-      if (src.mod != SrcMod::None) resolved = false;
+      if (src.mod != SrcMod::None) {
+        if (affineMod(src.mod, s.modScale[i], s.modOffset[i])) s.modded |= uint8_t(1u << i);
+        else resolved = false;
+      }
       for (int c = 0; c < 4; ++c) {
         s.src[i][c] = laneArray(regs, src.file, src.index, (src.swizzle >> (2 * c)) & 3);
         resolved &= s.src[i][c] != nullptr;
@@ -532,11 +919,12 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
     s.scale = in.shift == 0 ? 1.0f : std::ldexp(1.0f, in.shift);
     s.lo = in.saturate ? 0.0f : in.clampLo;
     s.hi = in.saturate ? 1.0f : in.clampHi;
+    s.quantize = in.quantize;
     if (!resolved || !anyDst) continue;
     if (StepFn f = arithFor(in.op, in.shift != 0, clamp)) {
       s.run = f;
-    } else if (in.op == Op::Tex && in.dst.mask == 0xF && in.shift == 0 && !clamp &&
-               in.sampler < ctx.samplerCount && ctx.samplers[in.sampler].sample) {
+    } else if (in.op == Op::Tex && in.dst.mask == 0xF && in.shift == 0 && !clamp && !in.quantize &&
+               !s.modded && in.sampler < ctx.samplerCount && ctx.samplers[in.sampler].sample) {
       const float* c0 = s.src[0][0];
       const bool xyzw = s.src[0][1] == c0 + N && s.src[0][2] == c0 + 2 * N && s.src[0][3] == c0 + 3 * N;
       const bool disjoint = c0 + 4 * N <= s.dst[0] || s.dst[0] + 4 * N <= c0;
@@ -549,6 +937,10 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
 }
 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  if (program.flowControl) {
+    executeFlow(program, ctx, regs);
+    return;
+  }
   const PreparedProgram* pp = regs.prepared.get();
   if (pp && pp->program == &program && pp->code == program.code.data() &&
       pp->size == program.code.size()) {

@@ -24,7 +24,10 @@ static const char* opName(Op op) {
   static const char* names[] = {"mov", "add", "sub", "mul", "mad", "dp3", "dp4", "rcp", "rsq",
                                 "min", "max", "slt", "sge", "frc", "exp2", "log2", "pow", "lrp",
                                 "cmp", "cnd", "abs", "nrm", "dp2add", "tex", "texproj",
-                                "texbias", "texlod", "kill"};
+                                "texbias", "texlod", "kill", "floor", "round", "lit", "dst",
+                                "crs", "sgn", "sincos", "expp", "quot", "setp", "dsx", "dsy",
+                                "texgrad", "if", "else", "endif", "rep", "endrep", "loop",
+                                "endloop", "break", "call", "ret"};
   return names[static_cast<int>(op)];
 }
 
@@ -34,19 +37,26 @@ static std::string fileName(RegFile f) {
     case RegFile::Input: return "v";
     case RegFile::Output: return "o";
     case RegFile::Const: return "c";
-    case RegFile::Imm: return "i";
+    case RegFile::Imm: return "imm";
+    case RegFile::ConstInt: return "i";
+    case RegFile::ConstBool: return "b";
   }
   return "?";
 }
 
 static std::string srcText(const Src& s) {
   static const char comp[] = "xyzw";
+  (void)comp;
   std::string swz;
   if (s.swizzle != kSwzXYZW) {
     swz = ".";
     for (int i = 0; i < 4; ++i) swz += comp[(s.swizzle >> (2 * i)) & 3];
   }
   std::string r = fileName(s.file) + std::to_string(s.index) + swz;
+  if (s.rel == RelMode::Loop)
+    r = fileName(s.file) + "[aL+" + std::to_string(s.index) + "]" + swz;
+  else if (s.rel == RelMode::Temp)
+    r = fmt::format("{}[r{}.{}+{}]{}", fileName(s.file), s.relReg, comp[s.relComp & 3], s.index, swz);
   switch (s.mod) {
     case SrcMod::None: return r;
     case SrcMod::Neg: return "-" + r;
@@ -67,10 +77,15 @@ int sourceCount(Op op) {
   switch (op) {
     case Op::Mov: case Op::Rcp: case Op::Rsq: case Op::Frc: case Op::Exp2: case Op::Log2:
     case Op::Abs: case Op::Nrm: case Op::Tex: case Op::TexProj: case Op::TexBias:
-    case Op::TexLod: case Op::Kill:
+    case Op::TexLod: case Op::Kill: case Op::Floor: case Op::Round: case Op::Lit: case Op::Sgn:
+    case Op::SinCos: case Op::ExpP: case Op::Dsx: case Op::Dsy: case Op::Rep: case Op::Loop:
       return 1;
-    case Op::Mad: case Op::Lrp: case Op::Cmp: case Op::Cnd: case Op::Dp2Add:
+    case Op::Mad: case Op::Lrp: case Op::Cmp: case Op::Cnd: case Op::Dp2Add: case Op::TexGrad:
       return 3;
+    case Op::Else: case Op::EndIf: case Op::EndRep: case Op::EndLoop: case Op::Ret:
+      return 0;
+    case Op::If: case Op::Break: case Op::Call:
+      return 2;  // the condition's operands (unused when cmp is 0)
     default:
       return 2;
   }
@@ -94,7 +109,10 @@ std::string listProgram(const Program& p) {
     std::string line = fmt::format("{}{} {}{}{}", opName(in.op), mods, fileName(in.dst.file),
                                    in.dst.index, mask);
     for (int i = 0; i < sourceCount(in.op); ++i) line += ", " + srcText(in.src[i]);
-    if (in.op >= Op::Tex && in.op <= Op::TexLod) line += fmt::format(", s{}", in.sampler);
+    if ((in.op >= Op::Tex && in.op <= Op::TexLod) || in.op == Op::TexGrad)
+      line += fmt::format(", s{}", in.sampler);
+    if (in.quantize) line += fmt::format(" q{}", in.quantize);
+    if (in.target >= 0) line += fmt::format(" -> {}", in.target);
     out += line + "\n";
   }
   for (size_t i = 0; i < p.immediates.size(); ++i) {

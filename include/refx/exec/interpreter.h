@@ -1,6 +1,7 @@
 // Runs a Program over one batch of kBatchLanes lanes. Dispatch happens once per
 // instruction per batch; each instruction's body is a loop over the lanes.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -17,7 +18,10 @@ struct alignas(64) LaneVec4 {
 
 // Texture sampling as the executor sees it. coords[i][lane]; `mode` tells how
 // the LOD is obtained (matching the Tex* ops). out[channel][lane].
-enum class SampleMode : uint8_t { Implicit, Projected, Bias, Lod };
+// Grad (texldd): coords has 12 rows: 0..3 the coordinates, 4..7 their derivatives
+// along screen x, 8..11 along y; a binding without gradient support may treat it as
+// Implicit.
+enum class SampleMode : uint8_t { Implicit, Projected, Bias, Lod, Grad };
 struct SamplerBinding {
   const void* context = nullptr;
   void (*sample)(const void* context, SampleMode mode, const float (*coords)[kBatchLanes],
@@ -29,6 +33,10 @@ struct ExecContext {
   int constantCount = 0;
   const SamplerBinding* samplers = nullptr;  // indexed by Instr::sampler
   int samplerCount = 0;
+  const std::array<int, 4>* intConstants = nullptr;  // ConstInt file (i#)
+  int intConstantCount = 0;
+  const bool* boolConstants = nullptr;  // ConstBool file (b#)
+  int boolConstantCount = 0;
 };
 
 struct PreparedProgram;  // see prepare()
@@ -37,9 +45,18 @@ struct PreparedProgram;  // see prepare()
 struct BatchRegisters {
   std::vector<LaneVec4> temps, inputs, outputs;
   uint16_t laneMask = 0xffff;  // live lanes; Kill clears bits
+  // Lanes that flow control lets write (programs with flow control only; all lanes
+  // otherwise). Runs leave it at 0xffff.
+  uint16_t execMask = 0xffff;
+  int loopCounter = 0;  // aL of the innermost running loop
   std::shared_ptr<const PreparedProgram> prepared;  // set by prepare()
   void resize(const Program& p);
 };
+
+// Programs with flow control stop after this many executed instructions per batch
+// (D3D9's guaranteed minimum of MaxVShaderInstructionsExecuted /
+// MaxPShaderInstructionsExecuted), so no program runs forever.
+constexpr long kMaxExecutedInstructions = 65535;
 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs);
 

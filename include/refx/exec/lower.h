@@ -13,7 +13,17 @@
 //   constants       Const  0..N-1 the float constants c# set through the API (local
 //                          `def` constants are resolved by the lowering itself);
 //                          pixel shaders additionally read the texture stages' bump
-//                          environment at kConstBumpEnv (see below)
+//                          environment at kConstBumpEnv (see below), so their
+//                          constant array needs kConstBumpEnv + kConstBumpEnvCount
+//                          entries when bumpEnvStages is set
+//                   ConstInt / ConstBool: i# / b# through ExecContext::intConstants /
+//                          boolConstants (defi / defb resolved by the lowering)
+//   samplers        Instr::sampler = the stage: ps_1_x stage m (t#/r# number), ps_2_0+
+//                          s#; vertex shaders (vs_3_0 texldl) use s0..s3, which the
+//                          device binds to D3DVERTEXTEXTURESAMPLER0..3
+//   precision       ps_1_x values written to r#/t# clamp to ±pixelShader1xMaxValue
+//                          (ps_1_4: at least 8), constants to [-1, 1], v0/v1 to [0, 1]
+//                          (saturated in place at the start of the program, ps_2_x too)
 #pragma once
 #include <array>
 #include <cstdint>
@@ -33,6 +43,9 @@ struct ShaderLoweringOptions {
   // The profile's PixelShader1xMaxValue: ps_1_x intermediates clamp to ±this
   // (1 on DX8 parts, 8 on ps_1_4 parts, FLT_MAX = not clamped on D3D9 float parts).
   float pixelShader1xMaxValue = 1.0f;
+  // ps_1_1–1_3: bit m set when stage m has D3DTTFF_PROJECTED, so `tex t(m)` divides
+  // its coordinates by w (ignored by ps_1_4 and later, as in D3D).
+  uint8_t projectedTextureStages = 0;
 };
 
 // Pixel shaders read BUMPENVMAT00/01/10/11 of texture stage n at
@@ -59,6 +72,8 @@ struct LoweredShader {
   bool writesDepth = false;  // oDepth / texdepth / texm3x2depth
   bool kills = false;        // texkill
   int floatConstantsRead = 0;  // 1 + highest c# read (relative reads: the whole file)
+  // Stages whose bump environment (kConstBumpEnv) the program reads: texbem, texbeml, bem.
+  uint8_t bumpEnvStages = 0;
 };
 
 // Throws refx::Error if the shader uses something the executor cannot run.
