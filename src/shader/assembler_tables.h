@@ -1,0 +1,70 @@
+// Name tables of the shader assembly language: mnemonics, modifiers, register names,
+// declaration usages and versions. Shared by the assembler and its messages.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "refx/shader/bytecode.h"
+
+namespace refx::shader::asmtables {
+
+enum class MnemonicKind : uint8_t { Plain, Compare, Def, Dcl };
+
+// Version gates of the mnemonics whose spelling depends on the version.
+enum class FormRule : uint8_t {
+  Any,
+  Ps1Tex,    // tex, texcoord: ps_1_0–ps_1_3
+  Ps14Up,    // texld: ps_1_4 and later
+  Ps14Only,  // texcrd
+  Sm2Up,     // texldp, texldb
+  Reserved,  // texm3x3diff
+};
+
+struct MnemonicInfo {
+  const char* name;
+  Opcode opcode;
+  uint8_t control;        // specific-control bits 23:16
+  MnemonicKind kind;
+  Opcode compareOpcode;   // Compare kind: the opcode when a comparison suffix is present
+  FormRule form;
+};
+
+const MnemonicInfo* findMnemonic(std::string_view lowerName);
+// The closest known mnemonic within edit distance 2, or "".
+std::string nearestMnemonic(std::string_view lowerName);
+// The canonical mnemonic of an opcode ("mov", "texld" …).
+std::string opcodeMnemonic(Opcode op);
+
+// "vs_1_1", "ps.1.4", "ps_2_a", "vs_3_sw" (lower case) → Version.
+std::optional<Version> parseVersionName(std::string_view lowerText);
+
+Comparison findComparison(std::string_view s);          // "gt" … "le"; None if not one
+std::optional<int8_t> findShift(std::string_view s);    // "x2" → 1, "d2" → -1 …
+std::optional<uint8_t> findResultModifier(std::string_view s);  // "sat", "pp", "centroid"
+std::optional<TextureType> findTextureType(std::string_view s);  // "2d", "cube", "volume"
+const char* textureTypeName(TextureType t);
+std::optional<DeclUsage> findUsage(std::string_view s);  // "position", "texcoord" …
+
+struct OperandForm {
+  bool dst;
+  int src;
+};
+// Operands of `op` as the assembler reads them in `version` (def/dcl are parsed apart).
+OperandForm operandForm(Opcode op, Version version);
+
+struct RegisterName {
+  const char* letters;  // lower case: "r", "opos", "od" …
+  RegType type;
+  bool indexed;         // takes a number (r0) or not (oPos)
+  uint32_t fixedIndex;  // for names without a number (oFog = 1)
+  uint32_t maxIndex;    // highest encodable number
+};
+// The register file named `letters` in `version`, or nullptr.
+const RegisterName* findRegisterName(std::string_view letters, Version version);
+// "registers of vs_1_1: r#, v#, c#, a0, oPos, …" for messages.
+std::string registerHelp(Version version);
+std::string registerDisplayName(RegType type, uint32_t index, Version version);
+
+}  // namespace refx::shader::asmtables
