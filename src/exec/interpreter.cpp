@@ -663,7 +663,10 @@ void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters&
           stack[k].saved &= uint16_t(~leave);
           stack[k].taken &= uint16_t(~leave);
         }
-        if (!exec) {
+        // Lanes still in the loop: those running, and those waiting in enclosing
+        // if blocks inside it (saved at the outermost one).
+        const uint16_t inLoop = loop + 1 < depth ? stack[loop + 1].saved : exec;
+        if (!exec && !inLoop) {
           depth = loop + 1;
           pc = code[size_t(stack[loop].pc)].target;  // the EndRep/EndLoop: leaves the loop
         } else {

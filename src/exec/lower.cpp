@@ -407,6 +407,12 @@ class Lowerer {
   }
 
   void finish() {
+    // Without calls, the first Ret is the end of the main program; drop it and the
+    // unreachable subroutines so straight-line shaders keep the prepared fast path.
+    if (std::none_of(p_.code.begin(), p_.code.end(), [](const Instr& i) { return i.op == Op::Call; })) {
+      auto ret = std::find_if(p_.code.begin(), p_.code.end(), [](const Instr& i) { return i.op == Op::Ret; });
+      p_.code.erase(ret, p_.code.end());
+    }
     for (const Instr& in : p_.code)
       if (in.op >= Op::If && in.op <= Op::Ret) p_.flowControl = true;
     if (!defF_.empty()) {

@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <vector>
 
+#include "refx/core/diagnostics.h"
 #include "refx/exec/interpreter.h"
 #include "refx/exec/lower.h"
 #include "refx/shader/bytecode.h"
@@ -152,6 +153,17 @@ inline void expectNear(Vec4 got, Vec4 want, float tol = 1e-5f) {
     EXPECT_NEAR(got[c], want[c], tol) << "component " << c << " got (" << got.x << ", " << got.y
                                       << ", " << got.z << ", " << got.w << ")";
   }
+}
+
+}  // namespace probe
+
+#include "refx/shader/assembler.h"
+
+namespace probe {
+
+// Assembly text → lowered program ready to run.
+inline ShaderRun asmRun(const char* text, const ShaderLoweringOptions& o = {}) {
+  return ShaderRun(sh::assemble(text), o);
 }
 
 }  // namespace probe
