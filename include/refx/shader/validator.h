@@ -18,6 +18,12 @@ struct ValidationCaps {
   int ps2xTemps = 12;             // ps_2_x NumTemps
   int ps2xInstructionSlots = 96;  // ps_2_x NumInstructionSlots
   bool ps2xFlowControl = true;    // ps_2_x static flow control / predication / dsx
+  bool vs2xFlowControl = true;    // vs_2_x dynamic flow control / predication
+  int staticFlowControlDepth = 4;   // vs_2_x / ps_2_x rep (and call) nesting, 1..4
+  int dynamicFlowControlDepth = 24; // vs_2_x / ps_2_x if_comp / if p0 nesting, 0 or 24
+  bool ps2xArbitrarySwizzle = false;       // D3DPS20CAPS_ARBITRARYSWIZZLE
+  bool ps2xNoDependentReadLimit = false;   // D3DPS20CAPS_NODEPENDENTREADLIMIT
+  bool ps2xNoTexInstructionLimit = false;  // D3DPS20CAPS_NOTEXINSTRUCTIONLIMIT
 };
 
 struct Diagnostic {
