@@ -215,7 +215,10 @@ class Parser {
     size_t s = p_;
     while (!atEnd() && (isIdentChar(peek()) || peek() == '.')) ++p_;
     std::string text = lowerCopy(src_.substr(s, p_ - s));
-    if (text.empty()) errorAt(pos, "expected the shader version (vs_1_1 … ps_3_0) first, found {}", describeHere());
+    if (text.empty() || !isIdentStart(text[0])) {
+      p_ = s;
+      errorAt(pos, "expected the shader version (vs_1_1 … ps_3_0) first, found {}", describeHere());
+    }
     auto v = parseVersionName(text);
     if (!v) {
       std::string shown(src_.substr(s, std::min<size_t>(p_ - s, 40)));

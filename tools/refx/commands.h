@@ -17,6 +17,7 @@ Action addGalleryCommand(CLI::App& app);
 Action addBenchCommand(CLI::App& app);
 Action addAssetCommand(CLI::App& app);
 Action addDisasmCommand(CLI::App& app);
+Action addAsmCommand(CLI::App& app);
 
 // True when stderr is a terminal (progress display).
 bool stderrIsTerminal();
