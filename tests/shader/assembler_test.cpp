@@ -12,6 +12,10 @@
 // Opcode token: opcode | control << 16 | length << 24 (SM2+) | predicated 1<<28 | co-issue 1<<30.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -511,6 +515,81 @@ TEST(Assembler, InstructionsCarryPositions) {
   EXPECT_EQ(s.instructions[1].pos.line, 4);
   EXPECT_EQ(s.instructions[1].pos.column, 2);
   EXPECT_EQ(s.version.token(), 0xFFFE0101u);
+}
+
+// ---- the test shaders and the seeds' shaders -------------------------------------------------
+
+namespace {
+std::string readFile(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+std::string testShader(const char* name) {
+  return readFile(std::filesystem::path(REFX_TEST_DIR) / "shader" / "asm" / name);
+}
+}  // namespace
+
+TEST(AssemblerSeeds, RacorX6DiffuseBumpPs11) {
+  EXPECT_EQ(assembleTokens(testShader("seed_racorx6_ps11.psh")),
+            (std::vector<uint32_t>{
+                0xFFFF0101,                                      // ps.1.1
+                0x00000042, 0xB00F0000,                          // tex t0
+                0x00000042, 0xB00F0001,                          // tex t1
+                0x00000008, 0x800F0001, 0xB4E40001, 0x94E40000,  // dp3 r1, t1_bx2, v0_bx2 (SIGN = 4)
+                0x00000005, 0x800F0000, 0xB0E40000, 0x80E40001,  // mul r0,t0, r1
+                0x0000FFFF}));
+}
+
+TEST(AssemblerSeeds, RacorX8TableSpecularPs14) {
+  EXPECT_EQ(assembleTokens(testShader("seed_racorx8_ps14.psh")),
+            (std::vector<uint32_t>{
+                0xFFFF0104,                                      // ps.1.4
+                0x00000042, 0x800F0000, 0xB0E40000,              // texld r0, t0
+                0x00000040, 0x80070001, 0xB0E40001,              // texcrd r1.rgb, t1
+                0x00000008, 0x80030001, 0x80E40001, 0x84E40000,  // dp3 r1.rg, r1, r0_bx2
+                0x0000FFFD,                                      // phase
+                0x00000042, 0x800F0003, 0xB0E40000,              // texld r3, t0
+                0x00000042, 0x800F0002, 0x80E40001,              // texld r2, r1
+                0x00000005, 0x800F0000, 0x80E40002, 0x80E40003,  // mul r0, r2, r3
+                0x0000FFFF}));
+}
+
+TEST(AssemblerSeeds, RacorX10PointLightVs11) {
+  std::vector<uint32_t> t = assembleTokens(testShader("seed_racorx10_pointlight.vsh"));
+  EXPECT_EQ(t, (std::vector<uint32_t>{
+                   0xFFFE0101,                                      // vs.1.1
+                   0x00000014, 0xC00F0000, 0x90E40000, 0xA0E40008,  // m4x4 oPos, v0, c8
+                   0x00000014, 0x800F0002, 0x90E40000, 0xA0E40000,  // m4x4 r2, v0, c0
+                   0x00000002, 0x800F000A, 0x80E40002, 0xA0E4000C,  // add r10, r2, c12
+                   0x00000005, 0x800F000A, 0x80E4000A, 0xA0000021,  // mul r10, r10, c33.x
+                   0x00000004, 0x800F000A, 0x80E4000A, 0xA0550021, 0xA0550021,  // mad … c33.yyyy
+                   0x00000001, 0xE0030000, 0x8054000A,              // mov oT0.xy, r10.xy (.xyyy = 54)
+                   0x00000001, 0xE0010001, 0x80AA000A,              // mov oT1.x, r10.z
+                   0x0000FFFF}));
+}
+
+TEST(AssemblerSeeds, EveryTestShaderAssemblesAndSurvivesDecode) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(fs::path(REFX_TEST_DIR) / "shader" / "asm"))
+    if (e.path().extension() == ".vsh" || e.path().extension() == ".psh") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  EXPECT_GE(files.size(), 20u);
+  for (const fs::path& f : files) {
+    SCOPED_TRACE(f.filename().string());
+    try {
+      Shader s = assemble(readFile(f), f.filename().string());
+      const bool vertex = f.extension() == ".vsh";
+      EXPECT_EQ(s.version.isVertex(), vertex);
+      std::vector<uint32_t> t = encode(s);
+      // The decoded model encodes to the same tokens.
+      EXPECT_EQ(encode(decode(t)), t);
+    } catch (const refx::Error& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
 }
 
 // ---- errors ---------------------------------------------------------------------------------
