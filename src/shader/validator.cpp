@@ -1641,6 +1641,20 @@ std::vector<Diagnostic> validate(const Shader& shader, const ValidationCaps& cap
   return Validator(shader, *rules, caps).run();
 }
 
+std::string checkDeviceVersion(Version shader, uint32_t deviceVersion, std::string_view deviceName) {
+  const bool vs = shader.isVertex();
+  const char* field = vs ? "VertexShaderVersion" : "PixelShaderVersion";
+  int devMajor = (deviceVersion >> 8) & 0xFF, devMinor = deviceVersion & 0xFF;
+  std::string has = (devMajor == 0 && devMinor == 0) ? "none" : fmt::format("{}.{}", devMajor, devMinor);
+  // 2_x is minor 1; vs_1_0/ps_1_0 run wherever 1_1 does.
+  int major = shader.major, minor = shader.minor == 0xFF ? 0 : shader.minor;
+  if (major == 1 && minor == 0) minor = 1;
+  bool covered = devMajor > major || (devMajor == major && devMinor >= minor);
+  if (covered) return {};
+  std::string need = (major == 2 && minor == 1) ? std::string("above 2.0") : fmt::format("{}.{}", major, minor);
+  return fmt::format("{} needs {} {}, {} has {}", versionName(shader), field, need, deviceName, has);
+}
+
 void requireValid(const Shader& shader, std::string_view fileName, const ValidationCaps& caps) {
   auto diags = validate(shader, caps);
   if (diags.empty()) return;

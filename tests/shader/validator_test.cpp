@@ -1034,6 +1034,17 @@ TEST(Validator, UnsupportedVersion) {
   EXPECT_TRUE(isValid("ps_1_0\ntex t0\nmov r0, t0"));
 }
 
+TEST(Validator, DeviceVersion) {
+  const Version ps14{ShaderType::Pixel, 1, 4}, ps11{ShaderType::Pixel, 1, 1}, ps2x{ShaderType::Pixel, 2, 1};
+  const Version vs11{ShaderType::Vertex, 1, 1};
+  EXPECT_EQ(checkDeviceVersion(ps14, 0xFFFF0101, "dx8"), "ps_1_4 needs PixelShaderVersion 1.4, dx8 has 1.1");
+  EXPECT_EQ(checkDeviceVersion(ps11, 0xFFFF0104, "dx81"), "");
+  EXPECT_EQ(checkDeviceVersion(ps14, 0xFFFF0200, "dx9"), "");
+  EXPECT_EQ(checkDeviceVersion(ps2x, 0xFFFF0200, "dx9"), "ps_2_x needs PixelShaderVersion above 2.0, dx9 has 2.0");
+  EXPECT_EQ(checkDeviceVersion(ps2x, 0xFFFF0300, "dx9-sm3"), "");
+  EXPECT_EQ(checkDeviceVersion(vs11, 0xFFFE0000, "dx7"), "vs_1_1 needs VertexShaderVersion 1.1, dx7 has none");
+}
+
 TEST(Validator, RequireValidThrowsLocatedError) {
   Shader s = assemble("ps_1_1\ntex t0\nmov r0, r1", "shader.psh");
   try {

@@ -18,6 +18,7 @@ Action addBenchCommand(CLI::App& app);
 Action addAssetCommand(CLI::App& app);
 Action addDisasmCommand(CLI::App& app);
 Action addAsmCommand(CLI::App& app);
+Action addValidateCommand(CLI::App& app);
 
 // True when stderr is a terminal (progress display).
 bool stderrIsTerminal();

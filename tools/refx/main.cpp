@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "refx 0.1");
   std::vector<std::pair<CLI::App*, Action>> commands;
   for (Register reg : {addCapsCommand, addReplayCommand, addGalleryCommand, addBenchCommand,
-                       addAssetCommand, addDisasmCommand, addAsmCommand}) {
+                       addAssetCommand, addDisasmCommand, addAsmCommand,
+                       addValidateCommand}) {
     size_t before = app.get_subcommands({}).size();
     Action action = reg(app);
     auto subs = app.get_subcommands({});

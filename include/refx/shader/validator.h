@@ -42,6 +42,11 @@ SlotCount countSlots(const Shader& shader);
 // All rule violations found (empty = valid).
 std::vector<Diagnostic> validate(const Shader& shader, const ValidationCaps& caps = {});
 
+// "ps_1_4 needs PixelShaderVersion 1.4, dx8 has 1.1" when the device's version token
+// (D3DCAPS9 VertexShaderVersion / PixelShaderVersion) does not cover the shader's
+// version; empty when it does. ps_2_x / vs_2_x need more than 2.0.
+std::string checkDeviceVersion(Version shader, uint32_t deviceVersion, std::string_view deviceName);
+
 // Throws refx::Error with the first violation as "file:line:col: error: message".
 void requireValid(const Shader& shader, std::string_view fileName, const ValidationCaps& caps = {});
 
