@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "refx/shader/validator.h"
+
 
 namespace refx::shader {
 
@@ -319,6 +321,17 @@ std::string disassemble(const Shader& shader, const DisassemblyOptions& options)
       continue;
     }
     out += indent + instructionText(ins, v) + "\n";
+  }
+  if (options.listing) {
+    // fxc's footer: pixel shaders split texture and arithmetic slots (flow control
+    // counts as arithmetic there), vertex shaders give the total alone.
+    const SlotCount slots = countSlots(shader);
+    out += "\n";
+    if (v.isPixel())
+      out += fmt::format("// approximately {} instruction slots used ({} texture, {} arithmetic)\n", slots.total(),
+                         slots.texture, slots.arithmetic + slots.flowControl);
+    else
+      out += fmt::format("// approximately {} instruction slots used\n", slots.total());
   }
   return out;
 }

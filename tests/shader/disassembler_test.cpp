@@ -241,3 +241,16 @@ TEST(Disassembler, ListingShowsConstantTable) {
 TEST(Disassembler, BadTokensAreErrors) {
   EXPECT_THROW(dis({0xFFFE0101, 0x00000001, 0x800F0000}), refx::Error);
 }
+
+TEST(Disassembler, ListingSlotLine) {
+  // ps_1_1: tex t0 (1 texture slot), mul r0, t0, v0 and mad (1 arithmetic slot each).
+  std::string ps = dis({0xFFFF0101, 0x00000042, 0xB00F0000, 0x00000005, 0x800F0000, 0xB0E40000, 0x90E40000,
+                        0x00000004, 0x800F0000, 0x80E40000, 0x90E40000, 0xB0E40000, 0x0000FFFF},
+                       true);
+  EXPECT_NE(ps.find("\n// approximately 3 instruction slots used (1 texture, 2 arithmetic)\n"), std::string::npos) << ps;
+  // vs_1_1: m4x4 is a 4-slot macro, dcl costs nothing, mov 1 slot: 5.
+  std::string vs = dis({0xFFFE0101, 0x0000001F, 0x80000000, 0x900F0000, 0x00000014, 0xC00F0000, 0x90E40000,
+                        0xA0E40000, 0x00000001, 0xD00F0000, 0x90E40000, 0x0000FFFF},
+                       true);
+  EXPECT_NE(vs.find("\n// approximately 5 instruction slots used\n"), std::string::npos) << vs;
+}
