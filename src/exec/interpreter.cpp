@@ -727,6 +727,7 @@ struct Step {
   // ps_1_x set is affine; the same roundings as applyMod).
   uint8_t modded;          // bit i: source i has a modifier
   float modScale[3], modOffset[3];
+  uint8_t comps[4], ncomps;  // written components, in order
 };
 
 // The reference path for ops and operands without a specialised routine.
@@ -798,25 +799,102 @@ void runArith(const Step& s, const ExecContext&, BatchRegisters&) {
   }
 }
 
+// The same operations as runArith, streamed per 8-lane half and component: used
+// when no destination component is read by a later component's sources and no
+// fixed-point grid applies (the common case), so nothing is staged. The step's
+// fields are copied to locals first: stores through float* could otherwise alias
+// them (uint8_t is a character type) and force reloads.
+template <Op O, bool Shift, bool Clamp, bool Modded>
+void runLanes(const Step& s, const ExecContext&, BatchRegisters&) {
+  constexpr int nsrc = O == Op::Mov ? 1 : (O == Op::Mad || O == Op::Lrp || O == Op::Cmp) ? 3 : 2;
+  const v8f scale = splat8(s.scale), lo = splat8(s.lo), hi = splat8(s.hi);
+  // Modified sources as v * k + o; unmodified ones (k, o) = (1, -0), and o = -0 for
+  // modifiers without an offset: x + (-0) is x for every x, -0 included.
+  v8f k[3], o[3];
+  if constexpr (Modded)
+    for (int i = 0; i < nsrc; ++i) {
+      k[i] = splat8(s.modScale[i]);
+      o[i] = splat8(s.modOffset[i]);
+    }
+  const int ncomps = s.ncomps;
+  int comps[4];
+  for (int c = 0; c < 4; ++c) comps[c] = s.comps[c];
+  const auto& src = s.src;
+  const auto& dst = s.dst;
+  auto ld = [&](int i, int c, int h) {
+    v8f v;
+    std::memcpy(&v, src[i][c] + 8 * h, sizeof v);
+    if constexpr (Modded) v = v * k[i] + o[i];
+    return v;
+  };
+  auto finish = [&](v8f v) {
+    if constexpr (Shift) v = v * scale;
+    if constexpr (Clamp) v = vmin(vmax(v, lo), hi);
+    return v;
+  };
+  for (int h = 0; h < 2; ++h) {
+    if constexpr (O == Op::Dp3 || O == Op::Dp4) {
+      v8f r = ld(0, 0, h) * ld(1, 0, h) + ld(0, 1, h) * ld(1, 1, h);
+      r += ld(0, 2, h) * ld(1, 2, h);
+      if constexpr (O == Op::Dp4) r += ld(0, 3, h) * ld(1, 3, h);
+      r = finish(r);
+      for (int j = 0; j < ncomps; ++j) std::memcpy(dst[comps[j]] + 8 * h, &r, sizeof r);
+    } else {
+      for (int j = 0; j < ncomps; ++j) {
+        const int c = comps[j];
+        const v8f a = ld(0, c, h);
+        v8f r;
+        if constexpr (O == Op::Mov) {
+          r = a;
+        } else {
+          const v8f b = ld(1, c, h);
+          if constexpr (O == Op::Add) r = a + b;
+          else if constexpr (O == Op::Sub) r = a - b;
+          else if constexpr (O == Op::Mul) r = a * b;
+          else if constexpr (O == Op::Min) r = vmin(a, b);
+          else if constexpr (O == Op::Max) r = vmax(a, b);
+          else {
+            const v8f d = ld(2, c, h);
+            if constexpr (O == Op::Mad) r = a * b + d;
+            else if constexpr (O == Op::Lrp) r = a * (b - d) + d;
+            else r = a >= splat8(0.0f) ? b : d;  // Cmp
+          }
+        }
+        r = finish(r);
+        std::memcpy(dst[c] + 8 * h, &r, sizeof r);
+      }
+    }
+  }
+}
+
+template <Op O, bool Shift, bool Clamp>
+StepFn lanesFor(bool modded) {
+  return modded ? runLanes<O, Shift, Clamp, true> : runLanes<O, Shift, Clamp, false>;
+}
+
 template <Op O>
-StepFn arith(bool shift, bool clamp) {
+StepFn arith(bool shift, bool clamp, bool streamed, bool modded) {
+  if (streamed) {
+    if (shift) return clamp ? lanesFor<O, true, true>(modded) : lanesFor<O, true, false>(modded);
+    return clamp ? lanesFor<O, false, true>(modded) : lanesFor<O, false, false>(modded);
+  }
   if (shift) return clamp ? runArith<O, true, true> : runArith<O, true, false>;
   return clamp ? runArith<O, false, true> : runArith<O, false, false>;
 }
 
-StepFn arithFor(Op op, bool shift, bool clamp) {
+StepFn arithFor(Op op, bool shift, bool clamp, bool streamed = false, bool modded = false) {
   switch (op) {
-    case Op::Mov: return arith<Op::Mov>(shift, clamp);
-    case Op::Add: return arith<Op::Add>(shift, clamp);
-    case Op::Sub: return arith<Op::Sub>(shift, clamp);
-    case Op::Mul: return arith<Op::Mul>(shift, clamp);
-    case Op::Mad: return arith<Op::Mad>(shift, clamp);
-    case Op::Min: return arith<Op::Min>(shift, clamp);
-    case Op::Max: return arith<Op::Max>(shift, clamp);
-    case Op::Lrp: return arith<Op::Lrp>(shift, clamp);
-    case Op::Cmp: return arith<Op::Cmp>(shift, clamp);
-    case Op::Dp3: return arith<Op::Dp3>(shift, clamp);
-    case Op::Dp4: return arith<Op::Dp4>(shift, clamp);
+    case Op::Mov: return arith<Op::Mov>(shift, clamp, streamed, modded);
+    case Op::Add: return arith<Op::Add>(shift, clamp, streamed, modded);
+    case Op::Sub: return arith<Op::Sub>(shift, clamp, streamed, modded);
+    case Op::Mul: return arith<Op::Mul>(shift, clamp, streamed, modded);
+    case Op::Mad: return arith<Op::Mad>(shift, clamp, streamed, modded);
+    case Op::Min: return arith<Op::Min>(shift, clamp, streamed, modded);
+    case Op::Max: return arith<Op::Max>(shift, clamp, streamed, modded);
+    case Op::Lrp: return arith<Op::Lrp>(shift, clamp, streamed, modded);
+    case Op::Cmp: return arith<Op::Cmp>(shift, clamp, streamed, modded);
+    case Op::Dp3: return arith<Op::Dp3>(shift, clamp, streamed, modded);
+    case Op::Dp4: return arith<Op::Dp4>(shift, clamp, streamed, modded);
     default: return nullptr;
   }
 }
@@ -828,6 +906,12 @@ void runTexInPlace(const Step& s, const ExecContext& ctx, BatchRegisters& regs) 
   const SamplerBinding& b = ctx.samplers[s.in->sampler];
   b.sample(b.context, SampleMode::Implicit, reinterpret_cast<const float(*)[N]>(s.src[0][0]),
            regs.laneMask, reinterpret_cast<float(*)[N]>(s.dst[0]));
+}
+
+// Component 0 copied to components 1..3 of one register.
+void runBroadcast(const Step& s, const ExecContext&, BatchRegisters&) {
+  const V16 v = load(s.src[0][0]);
+  for (int c = 1; c < 4; ++c) store(s.dst[c], v);
 }
 
 float* laneArray(BatchRegisters& regs, RegFile f, int index, int c) {
@@ -880,15 +964,33 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
                       in.src[i].rel == RelMode::None;
   pp->uniforms.resize(uniformCount);
   size_t nextUniform = 0;
+  // Registers whose four components hold one value (a dp3 result, a product of such
+  // values …) are written as component 0 only and read through it ("narrow")
+  // until an instruction needs the four arrays; then a broadcast step fills them.
+  std::vector<float*> narrow;  // component-0 arrays of the narrow registers
+  auto isNarrow = [&](const float* base) {
+    return std::find(narrow.begin(), narrow.end(), base) != narrow.end();
+  };
+  auto widen = [&](float* base) {
+    auto it = std::find(narrow.begin(), narrow.end(), base);
+    if (it == narrow.end()) return;
+    narrow.erase(it);
+    Step b{};
+    b.run = runBroadcast;
+    b.program = &program;
+    b.src[0][0] = base;
+    for (int c = 0; c < 4; ++c) b.dst[c] = base + c * N;
+    pp->steps.push_back(b);
+  };
+  auto registerBase = [&](RegFile f, int index) { return laneArray(regs, f, index, 0); };
   for (const Instr& in : program.code) {
-    Step st{};
-    st.run = runGeneric;
-    st.in = &in;
-    st.program = &program;
-    pp->steps.push_back(st);
-    Step& s = pp->steps.back();
+    Step s{};
+    s.run = runGeneric;
+    s.in = &in;
+    s.program = &program;
     const int nsrc = kSources[uint8_t(in.op)];
     bool resolved = in.dst.rel == RelMode::None;
+    for (int i = 0; i < 3; ++i) s.modScale[i] = 1.0f, s.modOffset[i] = -0.0f;
     for (int i = 0; i < nsrc; ++i) {
       const Src& src = in.src[i];
       if (src.rel != RelMode::None) {
@@ -902,16 +1004,19 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
         for (int c = 0; c < 4; ++c) {
           const float x = applyMod(v[(src.swizzle >> (2 * c)) & 3], src.mod);
           for (int l = 0; l < N; ++l) u.c[c][l] = x;
-          s.src[i][c] = u.c[c];
+          // Equal values share one array, so replicated results are recognised.
+          s.src[i][c] = std::memcmp(&x, &u.c[0][0], sizeof x) == 0 ? u.c[0] : u.c[c];
         }
         continue;
       }
       if (src.mod != SrcMod::None) {
         if (affineMod(src.mod, s.modScale[i], s.modOffset[i])) s.modded |= uint8_t(1u << i);
         else resolved = false;
+        if (s.modOffset[i] == 0.0f) s.modOffset[i] = -0.0f;
       }
+      const bool n = isNarrow(registerBase(src.file, src.index));
       for (int c = 0; c < 4; ++c) {
-        s.src[i][c] = laneArray(regs, src.file, src.index, (src.swizzle >> (2 * c)) & 3);
+        s.src[i][c] = laneArray(regs, src.file, src.index, n ? 0 : (src.swizzle >> (2 * c)) & 3);
         resolved &= s.src[i][c] != nullptr;
       }
     }
@@ -923,11 +1028,69 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
     s.lo = in.saturate ? 0.0f : in.clampLo;
     s.hi = in.saturate ? 1.0f : in.clampHi;
     s.quantize = in.quantize;
-    if (!resolved || !anyDst) continue;
-    if (StepFn f = arithFor(in.op, in.shift != 0, clamp)) {
-      s.run = f;
-    } else if (in.op == Op::Tex && in.dst.mask == 0xF && in.shift == 0 && !clamp && !in.quantize &&
-               !s.modded && in.sampler < ctx.samplerCount && ctx.samplers[in.sampler].sample) {
+    float* dstBase = registerBase(in.dst.file, in.dst.index);
+    StepFn arithmetic = resolved && anyDst ? arithFor(in.op, in.shift != 0, clamp, false) : nullptr;
+    if (arithmetic) {
+      // One value in all four components: dot products, or per-component ops whose
+      // sources repeat one array.
+      bool replicated = in.op == Op::Dp3 || in.op == Op::Dp4;
+      if (!replicated) {
+        replicated = true;
+        for (int i = 0; i < nsrc; ++i)
+          for (int c = 1; c < 4; ++c) replicated &= s.src[i][c] == s.src[i][0];
+      }
+      if (replicated && in.dst.mask == 0xF && dstBase) {
+        s.dst[1] = s.dst[2] = s.dst[3] = nullptr;
+        if (!isNarrow(dstBase)) narrow.push_back(dstBase);
+      } else if (isNarrow(dstBase)) {
+        if (in.dst.mask == 0xF) {
+          narrow.erase(std::find(narrow.begin(), narrow.end(), dstBase));
+        } else {
+          // Sources reading the register were resolved to component 0; the broadcast
+          // happens before this step, so they stay valid.
+          widen(dstBase);
+        }
+      }
+      // Streamed when no written component is a source array of another written
+      // component, or when only one is and it can be written last (a narrow
+      // register read and rewritten); otherwise staged (every source read first).
+      int readByOthers = 0, last = -1;
+      for (int c = 0; c < 4; ++c) {
+        if (!s.dst[c]) continue;
+        bool read = false;
+        for (int i = 0; i < nsrc; ++i)
+          for (int k = 0; k < 4; ++k) read |= k != c && s.dst[k] && s.src[i][k] == s.dst[c];
+        if (read) ++readByOthers, last = c;
+      }
+      bool hazard = s.quantize != 0 || readByOthers > 1;
+      s.ncomps = 0;
+      for (int c = 0; c < 4; ++c)
+        if (s.dst[c] && c != last) s.comps[s.ncomps++] = uint8_t(c);
+      if (last >= 0) s.comps[s.ncomps++] = uint8_t(last);
+      if (in.op == Op::Dp3 || in.op == Op::Dp4) hazard = s.quantize != 0;  // read before any store
+      s.run = arithFor(in.op, in.shift != 0, clamp, !hazard, s.modded != 0);
+      pp->steps.push_back(s);
+      continue;
+    }
+    // Other steps read and write whole registers.
+    for (int i = 0; i < nsrc; ++i) {
+      const Src& src = in.src[i];
+      if (src.file == RegFile::Const || src.file == RegFile::Imm || src.rel != RelMode::None) {
+        if (src.rel != RelMode::None)  // any register of the file may be read
+          for (float* base : std::vector<float*>(narrow)) widen(base);
+        continue;
+      }
+      float* base = registerBase(src.file, src.index);
+      if (base && isNarrow(base)) {
+        widen(base);
+        for (int c = 0; c < 4; ++c) s.src[i][c] = laneArray(regs, src.file, src.index, (src.swizzle >> (2 * c)) & 3);
+      }
+    }
+    if (dstBase) widen(dstBase);
+    if (in.dst.rel != RelMode::None)
+      for (float* base : std::vector<float*>(narrow)) widen(base);
+    if (resolved && anyDst && in.op == Op::Tex && in.dst.mask == 0xF && in.shift == 0 && !clamp &&
+        !in.quantize && !s.modded && in.sampler < ctx.samplerCount && ctx.samplers[in.sampler].sample) {
       const float* c0 = s.src[0][0];
       const bool xyzw = s.src[0][1] == c0 + N && s.src[0][2] == c0 + 2 * N && s.src[0][3] == c0 + 3 * N;
       const bool disjoint = c0 + 4 * N <= s.dst[0] || s.dst[0] + 4 * N <= c0;
@@ -935,7 +1098,10 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
           s.dst[3] == s.dst[0] + 3 * N)
         s.run = runTexInPlace;
     }
+    pp->steps.push_back(s);
   }
+  // Every register ends with its four components, as without preparation.
+  for (float* base : std::vector<float*>(narrow)) widen(base);
   regs.prepared = std::move(pp);
 }
 
