@@ -346,7 +346,9 @@ class Parser {
           errorAt(pos, "'{}' is the ps_1_1–ps_1_3 instruction; {} uses '{}'", m.name, v.name(),
                   m.opcode == Opcode::Tex ? "texld" : "texcrd");
         break;
-      case FormRule::Ps14Up:  // texld: ps_1_4 and later (and vs_3_0 samplers via texldl)
+      case FormRule::Ps14Up:  // texld: ps_1_4 and later (vs_3_0 samples with texldl)
+        if (v.isVertex())
+          errorAt(pos, "'{}' is a pixel shader instruction (vs_3_0 samples textures with texldl)", m.name);
         if (v.ps1x() && !v.atLeast(1, 4))
           errorAt(pos, "'{}' needs ps_1_4 or later; {} uses 'tex'", m.name, v.name());
         break;
@@ -356,6 +358,8 @@ class Parser {
                   v.ps1x() ? std::string("; ") + v.name() + " uses 'texcoord'" : std::string());
         break;
       case FormRule::Sm2Up:  // texldp, texldb: the control bits exist from SM2 on
+        if (v.isVertex())
+          errorAt(pos, "'{}' is a pixel shader instruction (vs_3_0 samples textures with texldl)", m.name);
         if (!v.sm2plus()) errorAt(pos, "'{}' needs shader model 2.0 or later, not {}", m.name, v.name());
         break;
       case FormRule::Reserved:

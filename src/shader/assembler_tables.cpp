@@ -104,39 +104,6 @@ const MnemonicInfo kMnemonics[] = {
     {"phase", O::Phase, 0, K::Plain, O::Phase, F::Any},
 };
 
-// Operand counts of the common form (version-dependent ones in operandForm()).
-struct FormEntry {
-  Opcode op;
-  OperandForm form;
-};
-const FormEntry kForms[] = {
-    {O::Nop, {false, 0}},        {O::Mov, {true, 1}},          {O::Add, {true, 2}},
-    {O::Sub, {true, 2}},         {O::Mad, {true, 3}},          {O::Mul, {true, 2}},
-    {O::Rcp, {true, 1}},         {O::Rsq, {true, 1}},          {O::Dp3, {true, 2}},
-    {O::Dp4, {true, 2}},         {O::Min, {true, 2}},          {O::Max, {true, 2}},
-    {O::Slt, {true, 2}},         {O::Sge, {true, 2}},          {O::Exp, {true, 1}},
-    {O::Log, {true, 1}},         {O::Lit, {true, 1}},          {O::Dst, {true, 2}},
-    {O::Lrp, {true, 3}},         {O::Frc, {true, 1}},          {O::M4x4, {true, 2}},
-    {O::M4x3, {true, 2}},        {O::M3x4, {true, 2}},         {O::M3x3, {true, 2}},
-    {O::M3x2, {true, 2}},        {O::Call, {false, 1}},        {O::CallNZ, {false, 2}},
-    {O::Loop, {false, 2}},       {O::Ret, {false, 0}},         {O::EndLoop, {false, 0}},
-    {O::Label, {false, 1}},      {O::Pow, {true, 2}},          {O::Crs, {true, 2}},
-    {O::Abs, {true, 1}},         {O::Nrm, {true, 1}},          {O::Rep, {false, 1}},
-    {O::EndRep, {false, 0}},     {O::If, {false, 1}},          {O::IfC, {false, 2}},
-    {O::Else, {false, 0}},       {O::EndIf, {false, 0}},       {O::Break, {false, 0}},
-    {O::BreakC, {false, 2}},     {O::MovA, {true, 1}},         {O::TexKill, {true, 0}},
-    {O::TexBem, {true, 1}},      {O::TexBemL, {true, 1}},      {O::TexReg2AR, {true, 1}},
-    {O::TexReg2GB, {true, 1}},   {O::TexM3x2Pad, {true, 1}},   {O::TexM3x2Tex, {true, 1}},
-    {O::TexM3x3Pad, {true, 1}},  {O::TexM3x3Tex, {true, 1}},   {O::TexM3x3Diff, {true, 1}},
-    {O::TexM3x3Spec, {true, 2}}, {O::TexM3x3VSpec, {true, 1}}, {O::ExpP, {true, 1}},
-    {O::LogP, {true, 1}},        {O::Cnd, {true, 3}},          {O::TexReg2RGB, {true, 1}},
-    {O::TexDP3Tex, {true, 1}},   {O::TexM3x2Depth, {true, 1}}, {O::TexDP3, {true, 1}},
-    {O::TexM3x3, {true, 1}},     {O::TexDepth, {true, 0}},     {O::Cmp, {true, 3}},
-    {O::Bem, {true, 2}},         {O::Dp2Add, {true, 3}},       {O::Dsx, {true, 1}},
-    {O::Dsy, {true, 1}},         {O::TexLdd, {true, 4}},       {O::SetP, {true, 2}},
-    {O::TexLdl, {true, 2}},      {O::BreakP, {false, 1}},      {O::Phase, {false, 0}},
-};
-
 constexpr uint32_t kMax = 2047;  // 11-bit register number
 const RegisterName kVertexRegisters[] = {
     {"r", RegType::Temp, true, 0, kMax},        {"v", RegType::Input, true, 0, kMax},
@@ -305,20 +272,9 @@ std::optional<DeclUsage> findUsage(std::string_view s) {
 }
 
 OperandForm operandForm(Opcode op, Version v) {
-  switch (op) {
-    case O::Tex:  // tex t0 / texld r0, t0 / texld r0, t0, s0
-      if (v.isPixel() && v.major == 1) return {true, v.minor >= 4 ? 1 : 0};
-      return {true, 2};
-    case O::TexCoord:  // texcoord t0 / texcrd r0, t0
-      return {true, (v.isPixel() && v.major == 1 && v.minor >= 4) ? 1 : 0};
-    case O::SinCos:  // SM2 carries the two constant registers of the series
-    case O::Sgn:     // vs_2_x carries two scratch temps
-      return {true, v.major >= 3 ? 1 : 3};
-    default: break;
-  }
-  for (const FormEntry& e : kForms)
-    if (e.op == op) return e.form;
-  return {false, 0};
+  // The encoder's table, so that what is parsed is exactly what gets encoded.
+  const OperandCounts c = operandCounts(op, v);
+  return {c.dst, c.src};
 }
 
 const RegisterName* findRegisterName(std::string_view letters, Version v) {

@@ -672,6 +672,8 @@ TEST(AssemblerErrors, VersionLine) {
 TEST(AssemblerErrors, VersionSpecificForms) {
   EXPECT_EQ(errorOf("ps.1.4\ntex t0\n"), "t.psh:2:1: error: 'tex' is the ps_1_1–ps_1_3 instruction; ps_1_4 uses 'texld'");
   EXPECT_EQ(errorOf("ps.1.1\ntexld r0, t0\n"), "t.psh:2:1: error: 'texld' needs ps_1_4 or later; ps_1_1 uses 'tex'");
+  EXPECT_EQ(errorOf("vs_3_0\ntexld r0, r1, s0\n"),
+            "t.psh:2:1: error: 'texld' is a pixel shader instruction (vs_3_0 samples textures with texldl)");
   EXPECT_EQ(errorOf("ps.1.1\ntexcrd r0, t0\n"),
             "t.psh:2:1: error: 'texcrd' is a ps_1_4 instruction; ps_1_1 uses 'texcoord'");
   EXPECT_EQ(errorOf("ps.1.1\ntexm3x3diff t3, t0\n"),
