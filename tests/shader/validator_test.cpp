@@ -1082,6 +1082,56 @@ TEST(Validator, MalformedShadersDoNotCrash) {
   }
 }
 
+TEST(Validator, RandomShadersDoNotCrash) {
+  // Deterministic pseudo-random instructions: any opcode, register type, index,
+  // modifier, swizzle and flag combination must give diagnostics, never a crash.
+  uint32_t state = 12345;
+  auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  const Opcode ops[] = {Opcode::Mov, Opcode::Add, Opcode::Mad, Opcode::Tex, Opcode::TexCoord,
+                        Opcode::TexM3x2Pad, Opcode::TexM3x3Pad, Opcode::TexM3x3Spec, Opcode::Rep,
+                        Opcode::EndRep, Opcode::Loop, Opcode::EndLoop, Opcode::If, Opcode::IfC,
+                        Opcode::Else, Opcode::EndIf, Opcode::Call, Opcode::CallNZ, Opcode::Label,
+                        Opcode::Ret, Opcode::Dcl, Opcode::Def, Opcode::Phase, Opcode::M4x4,
+                        Opcode::SinCos, Opcode::Bem, Opcode::TexKill, Opcode::SetP, Opcode::TexLdl,
+                        Opcode::Break, Opcode::Cnd, Opcode::Cmp, Opcode::Dp4, Opcode(9999)};
+  for (int n = 0; n < 3000; ++n) {
+    Shader s;
+    s.version = allVersionRules()[next() % allVersionRules().size()]->version;
+    int count = int(next() % 12);
+    for (int i = 0; i < count; ++i) {
+      Instruction in;
+      in.opcode = ops[next() % std::size(ops)];
+      in.coissue = next() % 4 == 0;
+      in.predicated = next() % 6 == 0;
+      in.hasDst = next() % 5 != 0;
+      in.dst.type = RegType(next() % 20);
+      in.dst.index = uint16_t(next() % 40);
+      in.dst.writeMask = uint8_t(next() % 16);
+      in.dst.resultMod = uint8_t(next() % 8);
+      in.dst.shift = int8_t(int(next() % 16) - 8);
+      in.dst.relative = next() % 8 == 0;
+      in.srcCount = uint8_t(next() % 5);
+      for (int k = 0; k < in.srcCount; ++k) {
+        SrcParam& p = in.src[k];
+        p.type = RegType(next() % 20);
+        p.index = uint16_t(next() % 3000);
+        p.swizzle = uint8_t(next());
+        p.mod = SrcMod(next() % 16);
+        p.relative = next() % 8 == 0;
+        p.rel.type = next() % 2 ? RegType::Addr : RegType::Loop;
+        p.rel.component = uint8_t(next() % 4);
+      }
+      in.literal = {next(), next(), next(), next()};
+      in.textureType = TextureType(next() % 6);
+      in.pos = {i + 2, 1};
+      s.instructions.push_back(in);
+    }
+    validate(s);
+    countSlots(s);
+  }
+  SUCCEED();
+}
+
 TEST(VersionRules, TablesCoverEveryVersion) {
   const char* names[] = {"vs_1_1", "vs_2_0", "vs_2_x", "vs_3_0", "ps_1_1", "ps_1_2",
                          "ps_1_3", "ps_1_4", "ps_2_0", "ps_2_x", "ps_3_0"};
