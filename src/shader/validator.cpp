@@ -588,7 +588,9 @@ void Validator::checkRegisters(const Instruction& in) {
   };
 
   if (in.hasDst) {
-    const RegisterRule* r = checkIndex(in.dst.type, in.dst.index, true, in.dst.relative);
+    // texkill's operand is encoded as a destination but only read.
+    const bool written = in.opcode != O::TexKill;
+    const RegisterRule* r = checkIndex(in.dst.type, in.dst.index, written, in.dst.relative);
     if (in.dst.relative) checkRelative(r, in.dst.type, in.dst.rel);
   }
   for (int s = 0; s < in.srcCount; ++s) {

@@ -710,6 +710,10 @@ TEST(ValidatorPs14, DivideModifiers) {
 
 TEST(ValidatorPs14, TexdepthAndBem) {
   EXPECT_TRUE(isValid("ps_1_4\ntexcrd r5.rgb, t0\nphase\ntexdepth r5\nmov r0, c0"));
+  // texkill reads its operand (encoded as a destination): read-only t# are fine.
+  EXPECT_TRUE(isValid("ps_1_4\ntexld r0, t0\ntexkill t1\nmov r0, r0"));
+  EXPECT_TRUE(isValid("ps_2_0\ndcl t1\ntexkill t1\nmov oC0, t1"));
+  EXPECT_TRUE(hasError("ps_2_0\ndcl t1\ntexkill r0\nmov oC0, t1", "r0 is read before it is written"));
   EXPECT_TRUE(hasError("ps_1_4\ntexcrd r4.rgb, t0\nphase\ntexdepth r4\nmov r0, c0", "texdepth works only on r5"));
   EXPECT_TRUE(hasError("ps_1_4\ntexcrd r5.rgb, t0\ntexdepth r5\nmov r0, c0", "texdepth is available only in phase 2"));
   EXPECT_TRUE(isValid("ps_1_4\ntexld r1, t1\ntexcrd r2.rgb, t2\nbem r2.rg, r2, r1\nphase\ntexld r2, r2\nmov r0, r2"));
@@ -1185,6 +1189,23 @@ TEST(ValidatorSeeds, DataShadersAreValid) {
       EXPECT_TRUE(messages(shader).empty()) << name << ":\n" << joined(messages(shader));
   }
   EXPECT_GE(checked, 30);
+}
+
+// The assembler's test shaders (every version, every instruction family) are valid.
+TEST(ValidatorSeeds, AssemblerTestShadersAreValid) {
+  namespace fs = std::filesystem;
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(REFX_TEST_DIR) / "shader" / "asm")) {
+    std::string ext = entry.path().extension().string();
+    if (ext != ".psh" && ext != ".vsh") continue;
+    std::ifstream f(entry.path());
+    std::stringstream ss;
+    ss << f.rdbuf();
+    Shader shader = assemble(ss.str(), entry.path().filename().string());
+    EXPECT_TRUE(messages(shader).empty()) << entry.path() << ":\n" << joined(messages(shader));
+    ++checked;
+  }
+  EXPECT_GE(checked, 10);
 }
 
 // Each file in asm_invalid/ starts with "; expect: <message>".
