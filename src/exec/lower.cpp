@@ -382,6 +382,7 @@ class Lowerer {
   // hardware precision); done in place on the components the program reads.
   void clampColorInputs() {
     if (!ver_.isPixel() || ver_.major >= 3) return;
+    if (opt_.colorInputsInRange && !quantize_) return;
     uint8_t used[2] = {0, 0};
     for (const Instr& in : p_.code)
       for (int i = 0; i < sourceCount(in.op); ++i) {

@@ -107,6 +107,13 @@ TEST(LowerPixel, ColorInputsSaturated) {
   ShaderRun r(b.shader);
   r.input(kPsDiffuse, {1.5f, -0.5f, 0.25f, 2}).execute();
   expectNear(r.output(0), {1, 0, 0.25f, 1});
+  // With the caller's guarantee the program does not clamp again.
+  ShaderLoweringOptions o;
+  o.colorInputsInRange = true;
+  ShaderRun t(b.shader, o);
+  t.input(kPsDiffuse, {0.5f, 0.25f, 0.25f, 1}).execute();
+  expectNear(t.output(0), {0.5f, 0.25f, 0.25f, 1});
+  EXPECT_EQ(t.lowered.program.code.size(), 1u);  // just the mov
 }
 
 }  // namespace

@@ -46,6 +46,10 @@ struct ShaderLoweringOptions {
   // ps_1_1–1_3: bit m set when stage m has D3DTTFF_PROJECTED, so `tex t(m)` divides
   // its coordinates by w (ignored by ps_1_4 and later, as in D3D).
   uint8_t projectedTextureStages = 0;
+  // The caller guarantees interpolated v0/v1 within [0, 1] (vertex colors clamped per
+  // vertex, as D3D does for oD0/oD1): exact-precision programs then skip the
+  // saturation of the color inputs at their start.
+  bool colorInputsInRange = false;
 };
 
 // Pixel shaders read BUMPENVMAT00/01/10/11 of texture stage n at
