@@ -205,6 +205,84 @@ void Device::setStreamSource(int stream, VertexBufferPtr vb, uint32_t offset, ui
   state_.streams[stream] = StreamSource{std::move(vb), offset, stride};
 }
 
+VertexShaderPtr Device::createVertexShader(std::span<const uint32_t> tokens) const {
+  return std::make_shared<const VertexShader>(tokens, shaderValidationCaps());
+}
+
+PixelShaderPtr Device::createPixelShader(std::span<const uint32_t> tokens) const {
+  return std::make_shared<const PixelShader>(tokens, shaderValidationCaps());
+}
+
+shader::ValidationCaps Device::shaderValidationCaps() const {
+  return refx::shaderValidationCaps(caps_);
+}
+
+exec::ShaderLoweringOptions Device::shaderLoweringOptions(shader::Version version) const {
+  exec::ShaderLoweringOptions o;
+  o.precision = options_.precision == Precision::Hardware ? exec::Precision::Hardware : exec::Precision::Exact;
+  // PixelShader1xMaxValue of the profile; a profile without pixel shaders gets the
+  // version's minimum (1 for ps_1_1-1_3, 8 for ps_1_4).
+  const float maxValue = caps_.pixelShader1xMaxValue;
+  o.pixelShader1xMaxValue = maxValue > 0 ? maxValue : version.atLeast(1, 4) ? 8.0f : 1.0f;
+  // ps_1_1-1_3 `tex t(m)` divides by the coordinates' last component when stage m has
+  // D3DTTFF_PROJECTED (the fixed-function vertex stage leaves that divisor in .w).
+  if (version.ps1x() && !version.atLeast(1, 4))
+    for (int m = 0; m < 4; ++m)
+      if (state_.tss(m, TSS_TEXTURETRANSFORMFLAGS) & TTFF_PROJECTED)
+        o.projectedTextureStages |= uint8_t(1u << m);
+  return o;
+}
+
+namespace {
+
+template <typename Store>
+void setConstants(const char* api, size_t registers, uint32_t start, uint32_t count, Store store) {
+  if (size_t(start) + count > registers)
+    fail("{}: registers {} to {} are beyond the last register {}", api, start,
+         size_t(start) + count - 1, registers - 1);
+  for (uint32_t i = 0; i < count; ++i) store(start + i, i);
+}
+
+}  // namespace
+
+void Device::setVertexShaderConstantF(uint32_t start, const float* data, uint32_t count) {
+  setConstants("SetVertexShaderConstantF", state_.vsConstF.size(), start, count,
+                      [&](uint32_t r, uint32_t i) {
+                        state_.vsConstF[r] = Vec4(data[4 * i], data[4 * i + 1], data[4 * i + 2], data[4 * i + 3]);
+                      });
+}
+
+void Device::setPixelShaderConstantF(uint32_t start, const float* data, uint32_t count) {
+  setConstants("SetPixelShaderConstantF", state_.psConstF.size(), start, count,
+                      [&](uint32_t r, uint32_t i) {
+                        state_.psConstF[r] = Vec4(data[4 * i], data[4 * i + 1], data[4 * i + 2], data[4 * i + 3]);
+                      });
+}
+
+void Device::setVertexShaderConstantI(uint32_t start, const int* data, uint32_t count) {
+  setConstants("SetVertexShaderConstantI", state_.vsConstI.size(), start, count,
+                    [&](uint32_t r, uint32_t i) {
+                      state_.vsConstI[r] = {data[4 * i], data[4 * i + 1], data[4 * i + 2], data[4 * i + 3]};
+                    });
+}
+
+void Device::setPixelShaderConstantI(uint32_t start, const int* data, uint32_t count) {
+  setConstants("SetPixelShaderConstantI", state_.psConstI.size(), start, count,
+                    [&](uint32_t r, uint32_t i) {
+                      state_.psConstI[r] = {data[4 * i], data[4 * i + 1], data[4 * i + 2], data[4 * i + 3]};
+                    });
+}
+
+void Device::setVertexShaderConstantB(uint32_t start, const int* data, uint32_t count) {
+  setConstants("SetVertexShaderConstantB", state_.vsConstB.size(), start, count,
+                    [&](uint32_t r, uint32_t i) { state_.vsConstB[r] = data[i] != 0; });
+}
+
+void Device::setPixelShaderConstantB(uint32_t start, const int* data, uint32_t count) {
+  setConstants("SetPixelShaderConstantB", state_.psConstB.size(), start, count,
+                    [&](uint32_t r, uint32_t i) { state_.psConstB[r] = data[i] != 0; });
+}
+
 uint32_t verticesForPrimitives(PrimitiveType type, uint32_t n) {
   switch (type) {
     case PT_POINTLIST: return n;
@@ -286,6 +364,30 @@ void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatc
   }
   if (b->prepared) b->prepared->sample(req, out);
   else sampleTexture(*b->texture, b->state, req, out);
+}
+
+// Whether the program writes output register `index` (any component).
+bool writesOutput(const exec::Program& p, int index) {
+  for (const exec::Instr& in : p.code)
+    if (in.dst.file == exec::RegFile::Output && in.dst.index == index && in.dst.mask) return true;
+  return false;
+}
+
+// The constant file a lowered shader reads: the API's float constants, and for pixel
+// shaders the texture stages' bump environment at exec::kConstBumpEnv.
+std::vector<Vec4> shaderConstants(const DeviceState& st, bool pixel, const exec::LoweredShader& s) {
+  const std::vector<Vec4>& api = pixel ? st.psConstF : st.vsConstF;
+  std::vector<Vec4> c(std::max<size_t>(api.size(), size_t(std::max(s.floatConstantsRead, 0))));
+  std::copy(api.begin(), api.end(), c.begin());
+  if (!pixel) return c;
+  c.resize(std::max(c.size(), size_t(exec::kConstBumpEnv + exec::kConstBumpEnvCount)));
+  for (int n = 0; n < exec::kConstBumpEnvCount / 2 && n < kMaxTextureStages; ++n) {
+    c[exec::kConstBumpEnv + 2 * n] = Vec4(st.tssFloat(n, TSS_BUMPENVMAT00), st.tssFloat(n, TSS_BUMPENVMAT01),
+                                          st.tssFloat(n, TSS_BUMPENVMAT10), st.tssFloat(n, TSS_BUMPENVMAT11));
+    c[exec::kConstBumpEnv + 2 * n + 1] =
+        Vec4(st.tssFloat(n, TSS_BUMPENVLSCALE), st.tssFloat(n, TSS_BUMPENVLOFFSET), 0, 0);
+  }
+  return c;
 }
 
 // Whether the program samples sampler s (only those are prepared).
@@ -567,7 +669,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   const uint32_t count = hi - lo + 1;
   if (count > (1u << 24)) fail("draw references {} vertices; at most 16777216 are supported", count);
 
-  // Vertex stage.
+  // Vertex stage: the vertex shader, or fixed-function T&L as a program.
   StreamView streams[16];
   for (int s = 0; s < 16; ++s) {
     const StreamSource& src = st.streams[s];
@@ -576,8 +678,10 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     streams[s].size = src.buffer->data.size() - std::min<size_t>(src.offset, src.buffer->data.size());
     streams[s].stride = src.stride;
   }
+  const VertexShader* vs = st.vertexShader.get();
+  const PixelShader* ps = st.pixelShader.get();
   FixedFunctionVertexConfig vcfg;
-  vcfg.pretransformed = decl.find(DECLUSAGE_POSITIONT, 0) != nullptr;
+  vcfg.pretransformed = !vs && decl.find(DECLUSAGE_POSITIONT, 0) != nullptr;
   vcfg.hasNormal = decl.find(DECLUSAGE_NORMAL, 0) != nullptr;
   vcfg.hasDiffuse = decl.find(DECLUSAGE_COLOR, 0) != nullptr;
   vcfg.hasSpecular = decl.find(DECLUSAGE_COLOR, 1) != nullptr;
@@ -585,7 +689,21 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   for (int t = 0; t < 8; ++t)
     if (const VertexElement* e = decl.find(DECLUSAGE_TEXCOORD, uint8_t(t)))
       vcfg.texCoordDims[t] = e->type <= DECLTYPE_FLOAT4 ? e->type - DECLTYPE_FLOAT1 + 1 : 4;
-  const exec::Program vprog = buildFixedFunctionVertexProgram(st, vcfg);
+  std::shared_ptr<const exec::LoweredShader> vlow;
+  exec::Program ffVertex;
+  std::vector<FetchElement> fetch;
+  if (vs) {
+    vlow = vs->lowered({});  // the options only concern pixel shaders
+    fetch = shaderFetch(decl, *vlow);
+    vcfg.hasPSize = writesOutput(vlow->program, kVertexOutPSize);
+  } else {
+    ffVertex = buildFixedFunctionVertexProgram(st, vcfg);
+    fetch = fixedFunctionFetch(decl);
+  }
+  const exec::Program& vprog = vs ? vlow->program : ffVertex;
+  // Vertex shader colors reach the pixel stage through [0,1] interpolators, except
+  // between vs_3_0 and ps_3_0 (full float).
+  const bool clampColors = vs && !(ps && ps->version().atLeast(3, 0) && vs->version().atLeast(3, 0));
 
   auto& verts = impl_->vertices;
   verts.resize(count);
@@ -596,30 +714,62 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     if (r.inputs.size() < size_t(kVertexInputCount)) r.inputs.resize(kVertexInputCount);
     if (r.outputs.size() < size_t(kVertexOutputCount)) r.outputs.resize(kVertexOutputCount);
   }
+  // Vertex texture samplers (vs_3_0 texldl s0-s3 = D3DVERTEXTEXTURESAMPLER0-3).
+  constexpr int kVertexSamplers = kMaxSamplers - kVertexSampler0;
+  std::array<BoundSampler, kVertexSamplers> vbound;
+  std::array<exec::SamplerBinding, kVertexSamplers> vbindings;
+  for (int s = 0; s < kVertexSamplers; ++s) {
+    vbound[s].texture = st.textures[kVertexSampler0 + s].get();
+    vbound[s].state = decodeSamplerState(st, kVertexSampler0 + s);
+    vbindings[s].context = &vbound[s];
+    vbindings[s].sample = sampleBound;
+  }
+  const std::vector<Vec4> vconst = vs ? shaderConstants(st, false, *vlow) : std::vector<Vec4>{};
   exec::ExecContext vctx;
-  vctx.constants = st.vsConstF.data();
-  vctx.constantCount = int(st.vsConstF.size());
+  vctx.constants = vs ? vconst.data() : st.vsConstF.data();
+  vctx.constantCount = vs ? int(vconst.size()) : int(st.vsConstF.size());
+  if (vs) {
+    vctx.samplers = vbindings.data();
+    vctx.samplerCount = kVertexSamplers;
+    vctx.intConstants = st.vsConstI.data();
+    vctx.intConstantCount = int(st.vsConstI.size());
+    vctx.boolConstants = st.vsConstB.data();
+    vctx.boolConstantCount = int(st.vsConstB.size());
+  }
   for (auto& r : vregs) exec::prepare(vprog, vctx, r);
   impl_->pool.parallelFor(batches, [&](size_t b, int thread) {
     exec::BatchRegisters& r = vregs[thread];
     const uint32_t first = lo + uint32_t(b) * kBatchLanes;
     const int n = int(std::min<uint32_t>(kBatchLanes, lo + count - first));
-    resetInputs(r);
-    fetchVertices(decl, streams, first, n, r);
+    resetInputs(r, !vs);
+    fetchVertices(fetch, streams, first, n, r);
     for (auto& o : r.outputs) std::memset(&o, 0, sizeof(o));
+    r.laneMask = 0xffff;
     exec::execute(vprog, vctx, r);
     for (int l = 0; l < n; ++l) {
       ShadedVertex& sv = verts[first - lo + l];
       for (int o = 0; o < kVaryingCount; ++o)
         for (int c = 0; c < 4; ++c) sv.out[o][c] = r.outputs[o].c[c][l];
+      if (clampColors)
+        for (int o : {int(kVertexOutDiffuse), int(kVertexOutSpecular)})
+          for (int c = 0; c < 4; ++c) sv.out[o][c] = std::clamp(sv.out[o][c], 0.0f, 1.0f);
     }
   });
 
-  // Pixel stage program and samplers.
-  FixedFunctionPixelConfig pcfg;
-  for (int s = 0; s < 8; ++s) pcfg.textures[s] = st.textures[s].get();
-  exec::Program pprog = buildFixedFunctionPixelProgram(st, pcfg);
-  appendSpecularAndFog(pprog, st, true);
+  // Pixel stage program: the pixel shader (fog after it below ps_3_0; the shader adds
+  // specular itself) or the texture stage cascade with specular add and fog.
+  std::shared_ptr<const exec::LoweredShader> plow;
+  exec::Program pprog;
+  if (ps) {
+    plow = ps->lowered(shaderLoweringOptions(ps->version()));
+    pprog = plow->program;
+    if (!ps->version().atLeast(3, 0)) appendSpecularAndFog(pprog, st, false);
+  } else {
+    FixedFunctionPixelConfig pcfg;
+    for (int s = 0; s < 8; ++s) pcfg.textures[s] = st.textures[s].get();
+    pprog = buildFixedFunctionPixelProgram(st, pcfg);
+    appendSpecularAndFog(pprog, st, true);
+  }
 
   std::array<BoundSampler, kMaxPixelSamplers> bound;
   std::array<exec::SamplerBinding, kMaxPixelSamplers> bindings;
@@ -634,16 +784,28 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   RasterDraw d;
   d.state = &st;
   d.pixelProgram = &pprog;
-  d.execContext.constants = st.psConstF.data();
-  d.execContext.constantCount = int(st.psConstF.size());
+  const std::vector<Vec4> pconst = ps ? shaderConstants(st, true, *plow) : std::vector<Vec4>{};
+  d.execContext.constants = ps ? pconst.data() : st.psConstF.data();
+  d.execContext.constantCount = ps ? int(pconst.size()) : int(st.psConstF.size());
   d.execContext.samplers = bindings.data();
   d.execContext.samplerCount = kMaxPixelSamplers;
+  if (ps) {
+    d.execContext.intConstants = st.psConstI.data();
+    d.execContext.intConstantCount = int(st.psConstI.size());
+    d.execContext.boolConstants = st.psConstB.data();
+    d.execContext.boolConstantCount = int(st.psConstB.size());
+  }
   const bool flat = st.rs(RS_SHADEMODE) == SHADE_FLAT;
   const auto used = inputComponentsRead(pprog, st);
   for (int i = 0; i < 32; ++i) {
     if (!used[i]) continue;
     if (i == kPixelInPosition) {
       d.usesPosition = true;
+      continue;
+    }
+    if (i == exec::kPixelInFace) {
+      d.usesFace = true;
+      pprog.inputCount = std::max(pprog.inputCount, exec::kPixelInFace + 1);
       continue;
     }
     const int vary = varyingForPixelInput(i);
@@ -672,9 +834,11 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.stencil = depth_ && st.rs(RS_STENCILENABLE) != 0;
   d.alphaTest = st.rs(RS_ALPHATESTENABLE) != 0;
   d.alphaFunc = st.rs(RS_ALPHAFUNC);
-  bool kills = false;
+  // oDepth / texdepth / texm3x2depth replace the interpolated depth: no early test.
+  d.shaderDepth = plow && plow->writesDepth;
+  bool kills = plow && plow->kills;
   for (const auto& in : pprog.code) kills |= in.op == exec::Op::Kill;
-  d.earlyDepth = d.depthTest && !d.stencil && !d.alphaTest && !kills;
+  d.earlyDepth = d.depthTest && !d.stencil && !d.alphaTest && !kills && !d.shaderDepth;
   d.blend.enable = st.rs(RS_ALPHABLENDENABLE) != 0;
   d.blend.src = st.rs(RS_SRCBLEND);
   d.blend.dst = st.rs(RS_DESTBLEND);

@@ -6,6 +6,7 @@
 
 #include "ff_pixel.h"
 #include "output_merger.h"
+#include "refx/exec/lower.h"
 
 namespace refx::pipeline {
 
@@ -181,9 +182,20 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       pos.c[3][l] = wv[l / 8][l % 8];
     }
   }
+  if (d.usesFace) {
+    // vFace: > 0 for clockwise (front-facing) triangles, < 0 for counter-clockwise.
+    const float face = p.kind == PrimKind::Triangle && p.counterClockwise ? -1.0f : 1.0f;
+    auto& f = w.regs.inputs[exec::kPixelInFace];
+    for (int c = 0; c < 4; ++c) std::fill_n(f.c[c], N, face);
+  }
   w.regs.laneMask = mask;
   exec::execute(*d.pixelProgram, d.execContext, w.regs);
   mask &= w.regs.laneMask;
+  if (d.shaderDepth) {
+    // The shader's depth replaces the interpolated one, clamped to [0,1].
+    const float* z = w.regs.outputs[exec::kPixelOutDepth].c[0];
+    for (int l = 0; l < N; ++l) w.z[l] = std::clamp(z[l], 0.0f, 1.0f);
+  }
   shaded += static_cast<uint64_t>(__builtin_popcount(mask));
   if (!mask) return;
   mergeBatch(d, bx, by, mask, w.regs.outputs[kPixelOutColor].c, w.z, d.earlyDepth,
@@ -246,6 +258,10 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
   for (auto& w : workers) {
     w.regs.resize(*draw.pixelProgram);
     if (int(w.regs.inputs.size()) < kPixelInputCount) w.regs.inputs.resize(kPixelInputCount);
+    if (draw.usesFace && int(w.regs.inputs.size()) <= exec::kPixelInFace)
+      w.regs.inputs.resize(exec::kPixelInFace + 1);
+    if (draw.shaderDepth && int(w.regs.outputs.size()) <= exec::kPixelOutDepth)
+      w.regs.outputs.resize(exec::kPixelOutDepth + 1);
     for (auto& in : w.regs.inputs) std::memset(&in, 0, sizeof(in));
     exec::prepare(*draw.pixelProgram, draw.execContext, w.regs);
   }

@@ -62,6 +62,8 @@ struct RasterDraw {
   exec::ExecContext execContext;
   std::vector<InterpolatedInput> inputs;
   bool usesPosition = false;  // pixel input kPixelInPosition read
+  bool usesFace = false;      // pixel input exec::kPixelInFace read (vFace: +1 clockwise, -1 not)
+  bool shaderDepth = false;   // the program writes the depth (output exec::kPixelOutDepth .x)
   std::vector<Primitive> prims;
   std::vector<float> planes;  // 3 floats per plane
   // Targets

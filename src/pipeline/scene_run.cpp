@@ -8,6 +8,8 @@
 #include "refx/pipeline/device.h"
 #include "refx/pipeline/scene_script.h"
 #include "refx/resource/image_io.h"
+#include "refx/shader/assembler.h"
+#include "refx/shader/validator.h"
 
 namespace refx {
 
@@ -32,6 +34,8 @@ class Runner {
       current_ = &c;
       try {
         std::visit([this](const auto& a) { apply(a); }, c.action);
+      } catch (const Located&) {
+        throw;
       } catch (const Error& e) {
         std::string msg = e.what();
         std::string here = where().str() + ":";
@@ -92,39 +96,70 @@ class Runner {
     device_.setTexture(s.sampler, it->second);
   }
 
+  // Assembles, validates and creates the shader. Errors in the shader text keep the
+  // assembler's location: the scene file and line for an inline block (its lines are
+  // numbered as in the script), the shader file otherwise.
   void apply(const Shader& s) {
     if (s.source == Shader::Source::None) {
-      (s.pixel ? device_.mutableState().pixelShader : device_.mutableState().vertexShader) =
-          nullptr;
+      if (s.pixel) device_.setPixelShader(nullptr);
+      else device_.setVertexShader(nullptr);
       return;
     }
+    std::string text, file;
     if (s.source == Shader::Source::File) {
-      std::string path = resolve(s.path);
-      std::ifstream in(path, std::ios::binary);
-      if (!in) error(fmt::format("cannot open shader file {}", path));
+      file = resolve(s.path);
+      std::ifstream in(file, std::ios::binary);
+      if (!in) error(fmt::format("cannot open shader file {}", file));
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      if (in.bad()) error(fmt::format("cannot read shader file {}", file));
+      text = ss.str();
+    } else {
+      file = script_.file;
+      text.assign(size_t(std::max(s.textLine - 1, 0)), '\n');
+      text += s.text;
     }
-    error("shader assembly is not supported yet");
+    shader::Shader parsed;
+    try {
+      parsed = shader::assemble(text, file);
+      const bool pixel = parsed.version.isPixel();
+      if (pixel != s.pixel)
+        error(fmt::format("expected a {} shader ({}), got {}", s.pixel ? "pixel" : "vertex",
+                          s.pixel ? "ps_1_1 to ps_3_0" : "vs_1_1 to vs_3_0",
+                          parsed.version.name()));
+      shader::requireValid(parsed, file, device_.shaderValidationCaps());
+    } catch (const Error& e) {
+      if (std::string_view(e.what()).starts_with(file + ":")) throw Located(e.what());
+      throw;
+    }
+    const std::vector<uint32_t> tokens = shader::encode(parsed);
+    if (s.pixel) device_.setPixelShader(device_.createPixelShader(tokens));
+    else device_.setVertexShader(device_.createVertexShader(tokens));
   }
 
+  // An error that already names its file and line.
+  struct Located : Error {
+    using Error::Error;
+  };
+
   void apply(const SetConstants& c) {
-    DeviceState& st = device_.mutableState();
     switch (c.type) {
       case SetConstants::Type::Float: {
-        auto& regs = c.pixel ? st.psConstF : st.vsConstF;
-        for (size_t k = 0; k + 3 < c.floats.size(); k += 4)
-          regs.at(size_t(c.reg) + k / 4) =
-              Vec4(c.floats[k], c.floats[k + 1], c.floats[k + 2], c.floats[k + 3]);
+        const auto n = uint32_t(c.floats.size() / 4);
+        if (c.pixel) device_.setPixelShaderConstantF(uint32_t(c.reg), c.floats.data(), n);
+        else device_.setVertexShaderConstantF(uint32_t(c.reg), c.floats.data(), n);
         break;
       }
       case SetConstants::Type::Int: {
-        auto& regs = c.pixel ? st.psConstI : st.vsConstI;
-        for (size_t k = 0; k + 3 < c.ints.size(); k += 4)
-          regs.at(size_t(c.reg) + k / 4) = {c.ints[k], c.ints[k + 1], c.ints[k + 2], c.ints[k + 3]};
+        const auto n = uint32_t(c.ints.size() / 4);
+        if (c.pixel) device_.setPixelShaderConstantI(uint32_t(c.reg), c.ints.data(), n);
+        else device_.setVertexShaderConstantI(uint32_t(c.reg), c.ints.data(), n);
         break;
       }
       case SetConstants::Type::Bool: {
-        auto& regs = c.pixel ? st.psConstB : st.vsConstB;
-        for (size_t k = 0; k < c.ints.size(); ++k) regs.at(size_t(c.reg) + k) = c.ints[k] != 0;
+        const auto n = uint32_t(c.ints.size());
+        if (c.pixel) device_.setPixelShaderConstantB(uint32_t(c.reg), c.ints.data(), n);
+        else device_.setVertexShaderConstantB(uint32_t(c.reg), c.ints.data(), n);
         break;
       }
     }

@@ -1,12 +1,14 @@
-// ValidateDevice for the fixed-function texture cascade, bound textures and the
-// output merger. Shader programs are validated by the shader layer; with a pixel
-// shader bound the texture stage cascade is not used and is not checked here.
+// ValidateDevice for the shaders (their versions and constants against the profile,
+// and the version rules of the shader layer), the fixed-function texture cascade,
+// bound textures and the output merger. With a pixel shader bound the texture stage
+// cascade is not used and is not checked.
 #include <algorithm>
 #include <optional>
 
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/caps.h"
 #include "refx/pipeline/d3d9types.h"
+#include "refx/pipeline/shader_object.h"
 #include "refx/pipeline/state.h"
 
 namespace refx {
@@ -66,6 +68,17 @@ class Validator {
   Validator(const DeviceState& state, const CapsProfile& caps) : s_(state), caps_(caps) {}
 
   std::optional<std::string> run() {
+    if (s_.vertexShader)
+      if (auto r = shaderProgram(*s_.vertexShader, caps_.vertexShaderVersion)) return r;
+    if (s_.pixelShader)
+      if (auto r = shaderProgram(*s_.pixelShader, caps_.pixelShaderVersion)) return r;
+    // Shader model 3 pixel shaders read vs_3_0 outputs by semantic only.
+    if (s_.pixelShader && s_.pixelShader->version().atLeast(3, 0) &&
+        (!s_.vertexShader || !s_.vertexShader->version().atLeast(3, 0)))
+      return fmt::format("pixel shader {} needs a vs_3_0 vertex shader, not {}",
+                         s_.pixelShader->version().name(),
+                         s_.vertexShader ? s_.vertexShader->version().name()
+                                         : std::string("fixed-function vertex processing"));
     if (!s_.pixelShader)
       if (auto r = stages()) return r;
     if (auto r = textures()) return r;
@@ -78,6 +91,43 @@ class Validator {
   const CapsProfile& caps_;
 
   bool misc(uint32_t bit) const { return (caps_.primitiveMiscCaps & bit) != 0; }
+
+  // "pixel shader ps_1_4 needs PixelShaderVersion 1.4; dx8 has 1.1"
+  std::optional<std::string> shaderProgram(const ShaderObject& sh, uint32_t capsVersion) {
+    const shader::Version v = sh.version();
+    const bool pixel = v.isPixel();
+    const char* kind = pixel ? "pixel" : "vertex";
+    const char* field = pixel ? "PixelShaderVersion" : "VertexShaderVersion";
+    const bool hasShaders = (capsVersion & 0xffff) != 0;
+    const int capsMajor = int((capsVersion >> 8) & 0xff), capsMinor = int(capsVersion & 0xff);
+    // ps_2_x / vs_2_x (minor 1) run on 2.0 parts with the extended caps.
+    const int needMinor = v.major == 2 ? 0 : v.minor;
+    if (!hasShaders || capsMajor < v.major || (capsMajor == v.major && capsMinor < needMinor)) {
+      std::string has = hasShaders ? fmt::format("{}.{}", capsMajor, capsMinor) : "none";
+      return fmt::format("{} shader {} needs {} {}.{}; {} has {}", kind, v.name(), field,
+                         int(v.major), needMinor, caps_.name, has);
+    }
+    const shader::ValidationCaps vc = shaderValidationCaps(caps_);
+    if (!pixel) {
+      // Constant registers addressed directly (relative reads are checked when run).
+      int highest = -1;
+      for (const shader::Instruction& in : sh.decoded().instructions) {
+        if (in.opcode == shader::Opcode::Def && in.dst.type == shader::RegType::Const)
+          highest = std::max(highest, int(in.dst.index));
+        for (int i = 0; i < in.srcCount; ++i)
+          if (in.src[i].type == shader::RegType::Const && !in.src[i].relative)
+            highest = std::max(highest, int(in.src[i].index));
+      }
+      const int limit = caps_.maxVertexShaderConst ? int(caps_.maxVertexShaderConst) : 96;
+      if (highest >= limit)
+        return fmt::format("vertex shader {} uses c{} but {} has MaxVertexShaderConst {}",
+                           v.name(), highest, caps_.name, limit);
+    }
+    const std::vector<shader::Diagnostic> problems = shader::validate(sh.decoded(), vc);
+    if (!problems.empty())
+      return fmt::format("{} shader {}: {}", kind, v.name(), problems.front().message);
+    return std::nullopt;
+  }
 
   std::optional<std::string> stages() {
     uint32_t texturesUsed = 0;

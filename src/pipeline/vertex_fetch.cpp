@@ -99,20 +99,49 @@ static uint32_t elementSize(uint8_t type) {
   return type < sizeof(sizes) ? sizes[type] : 0;
 }
 
-void resetInputs(exec::BatchRegisters& regs) {
+void resetInputs(exec::BatchRegisters& regs, bool fixedFunction) {
   for (size_t r = 0; r < regs.inputs.size(); ++r)
     for (int c = 0; c < 4; ++c) {
       float v = c == 3 ? 1.0f : 0.0f;
-      if (r == kVertexInDiffuse) v = 1.0f;
-      if (r == kVertexInSpecular) v = 0.0f;
+      if (fixedFunction && r == kVertexInDiffuse) v = 1.0f;
+      if (fixedFunction && r == kVertexInSpecular) v = 0.0f;
       for (int l = 0; l < kBatchLanes; ++l) regs.inputs[r].c[c][l] = v;
     }
 }
 
-void fetchVertices(const VertexDeclaration& decl, const StreamView* streams, uint32_t first,
-                   int count, exec::BatchRegisters& regs) {
-  for (const VertexElement& e : decl.elements) {
-    int r = inputRegisterForElement(e);
+std::vector<FetchElement> fixedFunctionFetch(const VertexDeclaration& decl) {
+  std::vector<FetchElement> out;
+  for (const VertexElement& e : decl.elements)
+    if (int r = inputRegisterForElement(e); r >= 0) out.push_back({e, r});
+  return out;
+}
+
+std::vector<FetchElement> shaderFetch(const VertexDeclaration& decl,
+                                      const exec::LoweredShader& shader) {
+  constexpr int kShaderInputs = 16;
+  std::vector<FetchElement> out;
+  if (shader.vertexInputs.empty() && !shader.version.sm2plus()) {
+    for (const VertexElement& e : decl.elements) {
+      const int r = e.shaderRegister >= 0 ? e.shaderRegister : inputRegisterForElement(e);
+      if (r >= 0 && r < kShaderInputs) out.push_back({e, r});
+    }
+    return out;
+  }
+  for (const exec::LoweredShader::InputBinding& b : shader.vertexInputs) {
+    const uint8_t usage = uint8_t(b.usage);
+    const VertexElement* e = decl.find(usage, b.usageIndex);
+    if (!e && usage == DECLUSAGE_POSITION) e = decl.find(DECLUSAGE_POSITIONT, b.usageIndex);
+    if (!e && usage == DECLUSAGE_POSITIONT) e = decl.find(DECLUSAGE_POSITION, b.usageIndex);
+    if (e && b.reg < kShaderInputs) out.push_back({*e, b.reg});
+  }
+  return out;
+}
+
+void fetchVertices(const std::vector<FetchElement>& elements, const StreamView* streams,
+                   uint32_t first, int count, exec::BatchRegisters& regs) {
+  for (const FetchElement& fe : elements) {
+    const VertexElement& e = fe.element;
+    const int r = fe.reg;
     if (r < 0 || r >= int(regs.inputs.size()) || e.stream >= 16) continue;
     const StreamView& s = streams[e.stream];
     const uint32_t esize = elementSize(e.type);

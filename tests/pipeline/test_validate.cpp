@@ -165,12 +165,7 @@ TEST(ValidateDevice, InvalidValuesAreReported) {
   EXPECT_EQ(reason(t, "ref"), "stage 0 COLORARG1 9 is not a D3DTA register");
 }
 
-TEST(ValidateDevice, PixelShaderSkipsTheStageCascade) {
-  DeviceState s;
-  setStage(s, 0, TOP_DOTPRODUCT3, TA_TEXTURE, TA_DIFFUSE);
-  s.pixelShader = std::make_shared<int>(0);
-  EXPECT_EQ(reason(s, "dx6-tnt2"), "ok");
-}
+// With a pixel shader bound the stage cascade is not checked: shader_device_test.cpp.
 
 TEST(ValidateDevice, BlendFactorsMustBeInBlendCaps) {
   DeviceState s;

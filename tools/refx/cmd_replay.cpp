@@ -26,6 +26,7 @@ struct ReplayOptions {
   bool info = false;
   int threads = 0;
   bool check = false;
+  std::string precision = "exact";
 };
 
 struct Pixel {
@@ -71,6 +72,7 @@ int replay(const ReplayOptions& o) {
     if (o.info) std::printf("caps profile %s: %s\n", caps.name.c_str(), caps.description.c_str());
     DeviceOptions options;
     options.threads = o.threads;
+    options.precision = o.precision == "hardware" ? Precision::Hardware : Precision::Exact;
     Device device(caps, options);
     SceneOutput out = runSceneScript(script, device);
 
@@ -108,6 +110,10 @@ Action addReplayCommand(CLI::App& app) {
   cmd->add_flag("--info", o->info, "Print the active caps profile");
   cmd->add_option("--threads", o->threads, "Rendering threads (0: all cores)")
       ->check(CLI::Range(0, 1024));
+  cmd->add_option("--precision", o->precision,
+                  "Shader precision: exact (fp32, version ranges) or hardware (ps_1_x fixed "
+                  "point of the era's parts); default exact")
+      ->check(CLI::IsMember({"exact", "hardware"}));
   cmd->add_flag("--check", o->check,
                 "Compare the `# expect` pixels of the script; exit 1 on any mismatch");
   return [o] { return replay(*o); };

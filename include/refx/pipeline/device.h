@@ -7,6 +7,7 @@
 
 #include "refx/core/color.h"
 #include "refx/pipeline/caps.h"
+#include "refx/pipeline/shader_object.h"
 #include "refx/pipeline/state.h"
 
 namespace refx {
@@ -21,6 +22,8 @@ struct DepthStencilSurface {
 };
 using DepthStencilPtr = std::shared_ptr<DepthStencilSurface>;
 
+// Shader precision model: exact (fp32 with the versions' ranges) or hardware (ps_1_x
+// values also quantised to the fixed point of the era's parts).
 enum class Precision { Exact, Hardware };
 
 struct DeviceOptions {
@@ -53,6 +56,7 @@ class Device {
   void setCaps(CapsProfile caps) { caps_ = std::move(caps); }
   const DeviceOptions& options() const { return options_; }
   void setThreads(int threads);
+  void setPrecision(Precision precision) { options_.precision = precision; }
 
   // Render target: level 0 of a 2D texture (A8R8G8B8 or X8R8G8B8). Setting it resets
   // the viewport to the whole target, as SetRenderTarget does.
@@ -96,6 +100,29 @@ class Device {
   void drawIndexedPrimitiveUP(d3d::PrimitiveType type, uint32_t minIndex, uint32_t numVertices,
                               uint32_t primitiveCount, const void* indices, bool index32,
                               const void* vertices, uint32_t stride);
+
+  // Shaders. Creation decodes, validates (with the profile's limits) and lowers the
+  // tokens, throwing refx::Error for a shader that cannot run; whether the profile's
+  // shader versions allow it is ValidateDevice's question, as in D3D9.
+  VertexShaderPtr createVertexShader(std::span<const uint32_t> tokens) const;
+  PixelShaderPtr createPixelShader(std::span<const uint32_t> tokens) const;
+  void setVertexShader(VertexShaderPtr vs) { state_.vertexShader = std::move(vs); }
+  void setPixelShader(PixelShaderPtr ps) { state_.pixelShader = std::move(ps); }
+  const VertexShaderPtr& getVertexShader() const { return state_.vertexShader; }
+  const PixelShaderPtr& getPixelShader() const { return state_.pixelShader; }
+  // Constants: `count` registers from `start` (float: 4 floats each; int: 4 ints each;
+  // bool: one BOOL each, nonzero = TRUE).
+  void setVertexShaderConstantF(uint32_t start, const float* data, uint32_t count);
+  void setVertexShaderConstantI(uint32_t start, const int* data, uint32_t count);
+  void setVertexShaderConstantB(uint32_t start, const int* data, uint32_t count);
+  void setPixelShaderConstantF(uint32_t start, const float* data, uint32_t count);
+  void setPixelShaderConstantI(uint32_t start, const int* data, uint32_t count);
+  void setPixelShaderConstantB(uint32_t start, const int* data, uint32_t count);
+  // The version rules' device limits from the caps profile.
+  shader::ValidationCaps shaderValidationCaps() const;
+  // How pixel shaders are lowered on this device: the precision model and the
+  // profile's PixelShader1xMaxValue.
+  exec::ShaderLoweringOptions shaderLoweringOptions(shader::Version version) const;
 
   StateBlock createStateBlock() const { return StateBlock(state_); }
   void applyStateBlock(const StateBlock& sb) { state_ = sb.state(); }

@@ -14,6 +14,16 @@
 
 namespace refx {
 
+class VertexShader;
+class PixelShader;
+
+// Float constant registers of the API (a D3D9 device: 256 vertex, 224 pixel), and
+// the int and bool registers (16 each).
+constexpr int kMaxVertexShaderConstF = 256;
+constexpr int kMaxPixelShaderConstF = 224;
+constexpr int kMaxShaderConstI = 16;
+constexpr int kMaxShaderConstB = 16;
+
 struct Light {  // D3DLIGHT9
   uint32_t type = d3d::LIGHT_DIRECTIONAL;
   Color4 diffuse{1, 1, 1, 0}, specular{0, 0, 0, 0}, ambient{0, 0, 0, 0};
@@ -44,6 +54,9 @@ struct VertexElement {  // D3DVERTEXELEMENT9
   uint8_t method = 0;
   uint8_t usage = d3d::DECLUSAGE_POSITION;
   uint8_t usageIndex = 0;
+  // The v register this element feeds in a vs_1_1 shader without dcl instructions
+  // (a DirectX 8 declaration's D3DVSD_REG); -1: the D3DVSDE register of its usage.
+  int8_t shaderRegister = -1;
   bool operator==(const VertexElement&) const = default;
 };
 
@@ -91,9 +104,12 @@ struct DeviceState {
   VertexDeclaration declaration;
   std::array<StreamSource, 16> streams{};
   IndexBufferPtr indices;
-  // Shader objects and constants are added by the shader layer; nullptr = fixed function.
-  std::shared_ptr<const void> vertexShader, pixelShader;
-  std::vector<Vec4> vsConstF = std::vector<Vec4>(256), psConstF = std::vector<Vec4>(224);
+  // Shaders (shader_object.h); nullptr = fixed function. Constants as
+  // SetVertexShaderConstantF/I/B and SetPixelShaderConstantF/I/B set them.
+  std::shared_ptr<const VertexShader> vertexShader;
+  std::shared_ptr<const PixelShader> pixelShader;
+  std::vector<Vec4> vsConstF = std::vector<Vec4>(kMaxVertexShaderConstF),
+                    psConstF = std::vector<Vec4>(kMaxPixelShaderConstF);
   std::array<std::array<int, 4>, 16> vsConstI{}, psConstI{};
   std::array<bool, 16> vsConstB{}, psConstB{};
 
