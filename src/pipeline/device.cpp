@@ -224,6 +224,8 @@ exec::ShaderLoweringOptions Device::shaderLoweringOptions(shader::Version versio
   // version's minimum (1 for ps_1_1-1_3, 8 for ps_1_4).
   const float maxValue = caps_.pixelShader1xMaxValue;
   o.pixelShader1xMaxValue = maxValue > 0 ? maxValue : version.atLeast(1, 4) ? 8.0f : 1.0f;
+  // Vertex colors reach the pixel stage within [0,1] (clamped per vertex below ps_3_0).
+  o.colorInputsInRange = true;
   // ps_1_1-1_3 `tex t(m)` divides by the coordinates' last component when stage m has
   // D3DTTFF_PROJECTED (the fixed-function vertex stage leaves that divisor in .w).
   if (version.ps1x() && !version.atLeast(1, 4))

@@ -28,7 +28,8 @@ std::shared_ptr<const exec::LoweredShader> ShaderObject::lowered(
   std::lock_guard lock(mutex_);
   for (const auto& [o, program] : cache_)
     if (o.precision == options.precision && o.pixelShader1xMaxValue == options.pixelShader1xMaxValue &&
-        o.projectedTextureStages == options.projectedTextureStages)
+        o.projectedTextureStages == options.projectedTextureStages &&
+        o.colorInputsInRange == options.colorInputsInRange)
       return program;
   auto program = std::make_shared<const exec::LoweredShader>(exec::lowerShader(shader_, options));
   cache_.emplace_back(options, program);
