@@ -2,6 +2,7 @@
 # Runs refx's and Mesa llvmpipe's versions of the same workloads alternately in one
 # run and prints Mpixels/s and the ratio refx/llvmpipe per workload.
 #   scripts/bench-vs-llvmpipe.sh [ROUNDS] [SECONDS_PER_RUN]
+#   PAIRS="racorx9:specular" scripts/bench-vs-llvmpipe.sh   # a subset of the workloads
 # llvmpipe's benchmark source is the anchor in ../shared/anchors/llvmpipe_bench (or
 # $LLVMPIPE_BENCH_DIR); it is compiled into build/llvmpipe_bench.
 set -eu
@@ -26,7 +27,9 @@ W=${RES%x*}; H=${RES#*x}
 RAW=$(mktemp)
 trap 'rm -f "$RAW"' EXIT
 # workload pairs: refx workload name : llvmpipe workload name
-PAIRS="texture:texture"
+# (RacorX6's ps.1.1 diffuse bump = llvmpipe's W2 `diffuse`, RacorX9's ps.1.1
+# diffuse + specular = W3 `specular`)
+PAIRS=${PAIRS:-"texture:texture racorx6:diffuse racorx9:specular"}
 for round in $(seq 1 "$ROUNDS"); do
   for pair in $PAIRS; do
     rw=${pair%%:*}; lw=${pair#*:}
@@ -51,10 +54,11 @@ for line in open(sys.argv[1]):
     who, w, g, t, v = line.split()
     runs[(who, w, g, t)].append(float(v))
 keys = sorted({k[1:] for k in runs})
-print(f"{'workload':<10} {'geom':<7} {'threads':>7} {'refx Mpix/s':>12} {'llvmpipe Mpix/s':>16} {'refx/llvmpipe':>14}")
+names = {"texture": "texture", "racorx6": "diffuse", "racorx9": "specular"}
+print(f"{'workload':<10} {'llvmpipe':<9} {'geom':<7} {'threads':>7} {'refx Mpix/s':>12} {'llvmpipe Mpix/s':>16} {'refx/llvmpipe':>14}")
 for w, g, t in keys:
     r = statistics.median(runs.get(("refx", w, g, t), [0]))
     l = statistics.median(runs.get(("llvmpipe", w, g, t), [0]))
     ratio = r / l if l else float("nan")
-    print(f"{w:<10} {g:<7} {t:>7} {r:>12.1f} {l:>16.1f} {ratio:>14.2f}")
+    print(f"{w:<10} {names.get(w, w):<9} {g:<7} {t:>7} {r:>12.1f} {l:>16.1f} {ratio:>14.2f}")
 PY

@@ -1,5 +1,8 @@
 // `refx bench`: Mpixels/s of the device on the workloads llvmpipe is measured on
-// (../shared/anchors/llvmpipe_bench): a full-screen quad and a lit sphere.
+// (../shared/anchors/llvmpipe_bench): a full-screen quad and a lit sphere, textured
+// (`texture`, fixed function), or shaded by RacorX6's ps.1.1 diffuse bump shader
+// (`racorx6`, llvmpipe's `diffuse`) or RacorX9's ps.1.1 diffuse + specular shader
+// (`racorx9`, llvmpipe's `specular`), with the same textures, geometry and lights.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +16,8 @@
 #include "refx/d3dx/mesh.h"
 #include "refx/pipeline/device.h"
 #include "refx/resource/image_io.h"
+#include "refx/shader/assembler.h"
+#include "racorx_scene.h"
 #include "samples.h"
 
 namespace refx::cli {
@@ -28,6 +33,7 @@ struct BenchOptions {
   std::string size = "1024x768";
   double minTime = 2.0;
   std::string png;
+  bool hardware = false;
 };
 
 std::vector<std::string> splitList(const std::string& s) {
@@ -57,14 +63,89 @@ TexturePtr checkerTexture(int size) {
   return t;
 }
 
+// The anchor's normal map: a sum-of-sines height field's normals, n * 0.5 + 0.5.
+TexturePtr bumpNormalTexture(int size) {
+  auto t = Texture::create2D(Format::A8R8G8B8, size, size, 0);
+  uint8_t* p = t->data(0, 0);
+  const double k = 2.0 * 3.14159265358979 * 16.0 / size;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const double dhdx = 0.6 * std::cos(k * x) * std::cos(0.5 * k * y);
+      const double dhdy = -0.3 * std::sin(k * x) * std::sin(0.5 * k * y) + 0.4 * std::cos(k * y * 1.3);
+      const double nx = -dhdx, ny = -dhdy, nz = 1.0;
+      const double inv = 1.0 / std::sqrt(nx * nx + ny * ny + nz * nz);
+      uint8_t* q = p + (size_t(y) * size + x) * 4;  // B G R A
+      q[2] = uint8_t(std::lround((nx * inv * 0.5 + 0.5) * 255.0));
+      q[1] = uint8_t(std::lround((ny * inv * 0.5 + 0.5) * 255.0));
+      q[0] = uint8_t(std::lround((nz * inv * 0.5 + 0.5) * 255.0));
+      q[3] = 255;
+    }
+  t->markDirty();
+  t->generateMips();
+  return t;
+}
+
+// The anchor's vertex shader for the ps.1.1 workloads: a point light and the eye in
+// object space (c4, c5), light and half vectors moved into tangent space, normalized
+// and biased into oD0 / oD1 (*0.5 + 0.5), the texture coordinates in oT0 and oT1.
+// c0-c3 = world*view*projection (transposed), c6 = 0.5.
+constexpr const char* kRacorXBenchVS = R"(vs.1.1
+m4x4 oPos, v0, c0
+mov r6, v3                      ; N
+mov r7, v8                      ; T
+mul r8, r6.zxyw, r7.yzxw
+mad r8, r6.yzxw, r7.zxyw, -r8   ; B = N x T
+add r0, c4, -v0                 ; L = light - position
+add r1, c5, -v0                 ; V = eye - position
+dp3 r2.x, r7, r0
+dp3 r2.y, r8, r0
+dp3 r2.z, r6, r0
+dp3 r3.x, r7, r1
+dp3 r3.y, r8, r1
+dp3 r3.z, r6, r1
+dp3 r2.w, r2, r2
+rsq r2.w, r2.w
+mul r2.xyz, r2, r2.w            ; normalize(L)
+dp3 r3.w, r3, r3
+rsq r3.w, r3.w
+mad r3.xyz, r3, r3.w, r2        ; normalize(V) + normalize(L)
+dp3 r3.w, r3, r3
+rsq r3.w, r3.w
+mul r3.xyz, r3, r3.w            ; H
+mad oD0.xyz, r2, c6, c6
+mad oD1.xyz, r3, c6, c6
+mov oT0.xy, v7
+mov oT1.xy, v7
+)";
+
 struct Scene {
   d3dx::Mesh mesh;
   bool sphere = false;
 };
 
-Scene makeScene(const std::string& geom) {
+Scene makeScene(const std::string& geom, bool tangents) {
   Scene s;
-  if (geom == "quad") {
+  if (geom == "quad" && tangents) {
+    // The same clip-space quad, facing the viewer (-z), tangent +x.
+    s.mesh = d3dx::Mesh(d3dx::fvf::XYZ | d3dx::fvf::NORMAL | d3dx::fvf::tex(2) | d3dx::fvf::texCoordSize(3, 1), 4, 2);
+    const float P[4][2] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
+    const float T[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (uint32_t i = 0; i < 4; ++i) {
+      s.mesh.setPosition(i, {P[i][0], P[i][1], 0.5f});
+      s.mesh.setNormal(i, {0, 0, -1});
+      s.mesh.setTexCoord(i, 0, T[i][0], T[i][1]);
+      s.mesh.setTexCoord(i, 1, Vec4(1, 0, 0, 0));
+    }
+    s.mesh.indices = {0, 1, 2, 0, 2, 3};
+  } else if (geom == "sphere" && tangents) {
+    // createTexturedSphere carries the tangent (v8) in set 1.
+    s.mesh = d3dx::createTexturedSphere(1.0f, 64, 32);
+    for (uint32_t i = 0; i < s.mesh.vertexCount(); ++i) {
+      Vec4 t = s.mesh.texCoord(i, 0);
+      s.mesh.setTexCoord(i, 0, t.x * 2.0f, t.y);
+    }
+    s.sphere = true;
+  } else if (geom == "quad") {
     // Clip-space quad with identity transforms, white diffuse, (u,v) 0..1.
     s.mesh = d3dx::Mesh(d3dx::fvf::XYZ | d3dx::fvf::DIFFUSE | d3dx::fvf::tex(1), 4, 2);
     const float P[4][2] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
@@ -90,6 +171,57 @@ Scene makeScene(const std::string& geom) {
   return s;
 }
 
+// The anchor's sphere camera: projected radius 0.85 x half the screen diagonal; for a
+// unit sphere at distance d, r_ndc = cot(fov/2) / sqrt(d^2 - 1).
+struct SphereCamera {
+  Matrix world, view, projection;
+  float distance;
+};
+SphereCamera sphereCamera(int w, int h, float rotationY) {
+  const float aspect = float(w) / float(h), fov = 3.14159265f / 3.0f;
+  const float rNdc = 0.85f * std::sqrt(aspect * aspect + 1.0f);
+  const float t = rNdc * std::tan(fov / 2);
+  SphereCamera c;
+  c.distance = std::sqrt(1.0f / (t * t) + 1.0f);
+  c.world = matrixRotationY(rotationY);
+  c.view = matrixLookAtLH({0, 0, -c.distance}, {0, 0, 0}, {0, 1, 0});
+  c.projection = matrixPerspectiveFovLH(fov, aspect, 0.1f, 10.0f);
+  return c;
+}
+
+// RacorX6 / RacorX9 on the anchor's scene: colour map in stage 0, normal map in stage
+// 1, the seeds' ps.1.1 shader (data/shaders), the anchor's vertex shader and lights.
+void setupShaderWorkload(Device& dev, const Scene& s, const std::string& workload, const TexturePtr& color,
+                         const TexturePtr& normal, int w, int h) {
+  for (int st = 0; st < 2; ++st) {
+    dev.setTexture(st, st == 0 ? color : normal);
+    dev.setSamplerState(st, SAMP_MINFILTER, 2);  // LINEAR
+    dev.setSamplerState(st, SAMP_MAGFILTER, 2);
+    dev.setSamplerState(st, SAMP_MIPFILTER, 1);  // POINT: GL_LINEAR_MIPMAP_NEAREST
+  }
+  samples::bindMesh(dev, s.mesh);
+  dev.setVertexShader(dev.createVertexShader(shader::assembleTokens(kRacorXBenchVS, "<bench vs>")));
+  dev.setPixelShader(samples::racorx::loadPixelShader(dev, workload == "racorx6" ? "racorx6_ps11.psh" : "racorx9_ps11.psh"));
+  Matrix mvp = Matrix::identity();
+  Vec3 light{0.3f, 0.4f, -1.0f}, eye{0, 0, -2.0f};  // the anchor's quad light and eye, facing -z
+  if (s.sphere) {
+    // The anchor rotates by 0.6 and puts the light at (1.5, 1.2, 2.5) from the centre
+    // toward the viewer; light and eye go to object space through the inverse world.
+    const SphereCamera c = sphereCamera(w, h, 0.6f);
+    mvp = c.world * c.view * c.projection;
+    Matrix inv;
+    if (!inverse(c.world, inv)) inv = Matrix::identity();
+    light = transformCoord(Vec3{1.5f, 1.2f, -2.5f}, inv);
+    eye = transformCoord(Vec3{0, 0, -c.distance}, inv);
+    dev.setRenderState(RS_ZENABLE, ZB_TRUE);
+    dev.setRenderState(RS_ZFUNC, CMP_LESS);
+  }
+  samples::racorx::setMatrix(dev, 0, mvp);
+  samples::racorx::setVector(dev, 4, Vec4(light, 1));
+  samples::racorx::setVector(dev, 5, Vec4(eye, 1));
+  samples::racorx::setVector(dev, 6, Vec4(0.5f, 0.5f, 0.5f, 0.5f));
+}
+
 void setupDevice(Device& dev, const Scene& s, const TexturePtr& tex, int w, int h) {
   dev.setTexture(0, tex);
   dev.setSamplerState(0, SAMP_MINFILTER, 2);  // LINEAR
@@ -103,15 +235,10 @@ void setupDevice(Device& dev, const Scene& s, const TexturePtr& tex, int w, int 
     dev.setRenderState(RS_LIGHTING, 0);
     return;
   }
-  // Projected radius 0.85 x half the screen diagonal, as the anchor: for a unit
-  // sphere at distance d, r_ndc = cot(fov/2) / sqrt(d^2 - 1).
-  const float aspect = float(w) / float(h), fov = 3.14159265f / 3.0f;
-  const float rNdc = 0.85f * std::sqrt(aspect * aspect + 1.0f);
-  const float t = rNdc * std::tan(fov / 2);
-  const float d = std::sqrt(1.0f / (t * t) + 1.0f);
-  dev.setTransform(TS_VIEW, matrixLookAtLH({0, 0, -d}, {0, 0, 0}, {0, 1, 0}));
-  dev.setTransform(TS_PROJECTION, matrixPerspectiveFovLH(fov, aspect, 0.1f, 10.0f));
-  dev.setTransform(TS_WORLD, matrixRotationY(0.5f));
+  const SphereCamera c = sphereCamera(w, h, 0.5f);
+  dev.setTransform(TS_VIEW, c.view);
+  dev.setTransform(TS_PROJECTION, c.projection);
+  dev.setTransform(TS_WORLD, c.world);
   Light l;
   l.type = LIGHT_DIRECTIONAL;
   l.diffuse = {1, 1, 1, 1};
@@ -133,21 +260,30 @@ int runBench(const BenchOptions& o) {
     fail("--size: expected WxH between 16 and 8192, got '{}'", o.size);
   const bool tty = stderrIsTerminal();
   const TexturePtr tex = checkerTexture(1024);
+  TexturePtr normal;  // made when a shader workload needs it
   std::printf("%-10s %-7s %-10s %7s %9s %10s %12s\n", "workload", "geom", "res", "threads", "fps",
               "Mpix/s", "px/frame");
   for (const auto& wl : splitList(o.workloads)) {
-    if (wl != "texture") fail("--workload: unknown workload '{}' (available: texture)", wl);
+    if (wl != "texture" && wl != "racorx6" && wl != "racorx9")
+      fail("--workload: unknown workload '{}' (available: texture, racorx6, racorx9)", wl);
+    const bool shaded = wl != "texture";
+    if (shaded && !normal) normal = bumpNormalTexture(1024);
     for (const auto& geom : splitList(o.geoms)) {
-      const Scene scene = makeScene(geom);
+      const Scene scene = makeScene(geom, shaded);
       for (const auto& ts : splitList(o.threads)) {
         const int threads = std::atoi(ts.c_str());
         if (threads < 1 || threads > 256) fail("--threads: expected counts 1-256, got '{}'", ts);
         DeviceOptions opt;
         opt.threads = threads;
-        Device dev(CapsProfile{}, opt);
+        opt.precision = o.hardware ? Precision::Hardware : Precision::Exact;
+        // The shader workloads run on a DirectX 8 part's profile (ps.1.1, values in [-1, 1]).
+        Device dev(shaded ? loadCapsProfile("dx8") : CapsProfile{}, opt);
         dev.setRenderTarget(Texture::create2D(Format::A8R8G8B8, w, h));
         dev.setDepthStencilSurface(std::make_shared<DepthStencilSurface>(w, h));
-        setupDevice(dev, scene, tex, w, h);
+        if (shaded)
+          setupShaderWorkload(dev, scene, wl, tex, normal, w, h);
+        else
+          setupDevice(dev, scene, tex, w, h);
         auto frame = [&] {
           dev.clear(CLEAR_TARGET | CLEAR_ZBUFFER, 0xff000000, 1.0f, 0);
           dev.drawIndexedPrimitive(PT_TRIANGLELIST, 0, 0, scene.mesh.vertexCount(), 0,
@@ -186,12 +322,14 @@ int runBench(const BenchOptions& o) {
 Action addBenchCommand(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "measure Mpixels/s on the llvmpipe anchor's workloads");
-  cmd->add_option("--workload", o->workloads, "comma-separated workloads: texture")->capture_default_str();
+  cmd->add_option("--workload", o->workloads, "comma-separated workloads: texture, racorx6, racorx9")
+      ->capture_default_str();
   cmd->add_option("--geom", o->geoms, "comma-separated geometries: quad, sphere")->capture_default_str();
   cmd->add_option("--threads", o->threads, "comma-separated thread counts")->capture_default_str();
   cmd->add_option("--size", o->size, "render target WxH")->capture_default_str();
   cmd->add_option("--min-time", o->minTime, "seconds per measurement")->check(CLI::Range(0.01, 600.0))->capture_default_str();
   cmd->add_option("--png", o->png, "write the last frame to this PNG");
+  cmd->add_flag("--hardware", o->hardware, "shader workloads in the `hardware` precision model");
   return [o] { return runBench(*o); };
 }
 

@@ -20,6 +20,7 @@ struct GalleryOptions {
   std::string size = "256x256";
   std::string caps = "ref";
   int threads = 0;
+  std::string precision = "exact";
 };
 
 std::string htmlEscape(const std::string& s) {
@@ -55,6 +56,7 @@ int runGallery(const GalleryOptions& o) {
     if (tty) std::fprintf(stderr, "\r[%d/%zu] %-40s", index, samples.size(), s.name.c_str());
     DeviceOptions opt;
     opt.threads = o.threads;
+    opt.precision = o.precision == "hardware" ? Precision::Hardware : Precision::Exact;
     Device dev(caps, opt);
     dev.setRenderTarget(Texture::create2D(Format::A8R8G8B8, w, h));
     dev.setDepthStencilSurface(std::make_shared<DepthStencilSurface>(w, h));
@@ -69,9 +71,10 @@ int runGallery(const GalleryOptions& o) {
     cards += fmt::format(
         "<figure><img src=\"{}\" width=\"{}\" height=\"{}\" alt=\"{}\">"
         "<figcaption><b>{}</b><br>{}<br><i>source:</i> {}<br><i>profile:</i> {}<br>"
-        "<i>technique:</i> {}<br><i>validation:</i> {}<br><i>render:</i> {:.1f} ms<ul>{}</ul></figcaption></figure>\n",
+        "<i>precision:</i> {}<br><i>technique:</i> {}<br><i>validation:</i> {}<br><i>render:</i> {:.1f} ms<ul>{}</ul>"
+        "</figcaption></figure>\n",
         png, w, h, htmlEscape(s.name), htmlEscape(s.name), htmlEscape(s.title), htmlEscape(s.source),
-        htmlEscape(caps.name), htmlEscape(r.technique), htmlEscape(r.validation), ms, notes);
+        htmlEscape(caps.name), o.precision, htmlEscape(r.technique), htmlEscape(r.validation), ms, notes);
     if (!tty) std::printf("%s: %s (%s)\n", png.c_str(), r.technique.c_str(), r.validation.c_str());
   }
   if (tty) std::fprintf(stderr, "\r%-60s\r", "");
@@ -99,6 +102,9 @@ Action addGalleryCommand(CLI::App& app) {
   cmd->add_option("--size", o->size, "image size WxH")->capture_default_str();
   cmd->add_option("--caps", o->caps, "caps profile (see `refx caps`)")->capture_default_str();
   cmd->add_option("--threads", o->threads, "render threads (0 = all cores)")->check(CLI::Range(0, 256));
+  cmd->add_option("--precision", o->precision, "shader precision model: exact, or hardware (ps.1.x fixed point)")
+      ->check(CLI::IsMember({"exact", "hardware"}))
+      ->capture_default_str();
   return [o] { return runGallery(*o); };
 }
 

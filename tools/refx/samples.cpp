@@ -441,7 +441,13 @@ const std::vector<Sample>& allSamples() {
       {"d3dx-shapes", "D3DX shapes: teapot, sphere, box, cylinder, torus with vertex lighting",
        "the D3DX helpers of the seeds (D3DXCreate*, the Utah teapot)", renderShapes},
   };
-  return samples;
+  static const std::vector<Sample> all = [] {
+    std::vector<Sample> v = samples;
+    const auto& shaders = shaderSamples();
+    v.insert(v.end(), shaders.begin(), shaders.end());
+    return v;
+  }();
+  return all;
 }
 
 }  // namespace refx::samples

@@ -24,6 +24,9 @@ struct Sample {
 };
 
 const std::vector<Sample>& allSamples();
+// The vertex and pixel shader samples (RacorX6-14, the per-pixel lighting column,
+// hemisphere lighting, the BRDF pair); allSamples() lists them after the others.
+const std::vector<Sample>& shaderSamples();
 
 // Sets the mesh's FVF, a vertex buffer on stream 0 and a 32-bit index buffer.
 void bindMesh(Device& dev, const d3dx::Mesh& mesh);
