@@ -293,6 +293,11 @@ class Parser {
     ins.opcode = m->opcode;
     ins.control = m->control;
     checkMnemonicVersion(*m, mpos);
+    // phase is a bare token; declarations and definitions are not executed.
+    if ((ins.predicated || ins.coissue) &&
+        (m->kind == MnemonicKind::Def || m->kind == MnemonicKind::Dcl || ins.opcode == Opcode::Phase ||
+         ins.opcode == Opcode::Label))
+      errorAt(start, "'{}' cannot be {}", m->name, ins.coissue ? "co-issued" : "predicated");
 
     size_t firstSuffix = 1;
     if (m->kind == MnemonicKind::Compare) {

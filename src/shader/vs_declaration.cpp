@@ -220,6 +220,7 @@ class MacroParser {
         auto a = args(t, 2);
         e.kind = VsdEntry::Kind::TessNormal;
         e.regIn = uint8_t(registerArg(a[0]));
+        if (e.regIn > 15) lex_.error(a[0], "D3DVSD_TESSNORMAL input register {} is out of range (0 to 15)", e.regIn);
         e.reg = uint8_t(registerArg(a[1]));
       } else if (name == "D3DVSD_TESSUV") {
         auto a = args(t, 1);

@@ -681,6 +681,8 @@ TEST(AssemblerErrors, VersionSpecificForms) {
   EXPECT_EQ(errorOf("vs_2_0\n+mov r0, r1\n"), "t.psh:2:1: error: co-issue '+' is only available in ps_1_x, not in vs_2_0");
   EXPECT_EQ(errorOf("vs_1_1\n(p0) mov r0, r1\n"),
             "t.psh:2:1: error: predicated instructions need shader model 2.0 or later, not vs_1_1");
+  EXPECT_EQ(errorOf("ps_1_4\n+phase\n"), "t.psh:2:1: error: 'phase' cannot be co-issued");
+  EXPECT_EQ(errorOf("ps_2_x\n(p0) def c0, 1, 1, 1, 1\n"), "t.psh:2:1: error: 'def' cannot be predicated");
   EXPECT_EQ(errorOf("vs_2_x\nsetp p0, r0, r1\n"),
             "t.psh:2:1: error: 'setp' needs a comparison suffix (_gt, _lt, _ge, _le, _eq, _ne)");
   EXPECT_EQ(errorOf("ps_2_0\nmov r0, c[a0.x]\n"),
