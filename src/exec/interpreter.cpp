@@ -176,6 +176,16 @@ inline v8f splat8(float x) { return v8f{x, x, x, x, x, x, x, x}; }
 inline v8f vmin(v8f a, v8f b) { return a < b ? a : b; }
 inline v8f vmax(v8f a, v8f b) { return a > b ? a : b; }
 
+// Lanes a texture lookup must produce: every lane of a 2x2 quad with a live lane.
+// Helper pixels outside the primitive still compute values, so the derivatives of a
+// dependent read (texture result used as coordinates) stay those of the surface.
+inline uint16_t quadLanes(uint16_t live) {
+  uint16_t m = 0;
+  for (int q = 0; q < N / 4; ++q)
+    if ((live >> (4 * q)) & 0xF) m |= uint16_t(0xF << (4 * q));
+  return m;
+}
+
 void sample(const Instr& in, const Operand* src, const ExecContext& ctx, uint16_t laneMask,
             float (*out)[N]) {
   alignas(64) float co[12][N];
@@ -212,7 +222,7 @@ void sample(const Instr& in, const Operand* src, const ExecContext& ctx, uint16_
   }
   if (in.sampler < ctx.samplerCount && ctx.samplers[in.sampler].sample) {
     const SamplerBinding& b = ctx.samplers[in.sampler];
-    b.sample(b.context, mode, cp, laneMask, out);
+    b.sample(b.context, mode, cp, quadLanes(laneMask), out);
   } else {
     // Unbound sampler: D3D returns (0,0,0,1).
     for (int c = 0; c < 4; ++c)
@@ -905,7 +915,7 @@ StepFn arithFor(Op op, bool shift, bool clamp, bool streamed = false, bool modde
 void runTexInPlace(const Step& s, const ExecContext& ctx, BatchRegisters& regs) {
   const SamplerBinding& b = ctx.samplers[s.in->sampler];
   b.sample(b.context, SampleMode::Implicit, reinterpret_cast<const float(*)[N]>(s.src[0][0]),
-           regs.laneMask, reinterpret_cast<float(*)[N]>(s.dst[0]));
+           quadLanes(regs.laneMask), reinterpret_cast<float(*)[N]>(s.dst[0]));
 }
 
 // Component 0 copied to components 1..3 of one register.
