@@ -363,6 +363,13 @@ void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatc
   } else if (mode == exec::SampleMode::Lod) {
     req.lodMode = LodMode::Explicit;
     req.lod = co[3];
+  } else if (mode == exec::SampleMode::Grad) {
+    // texldd: rows 4..6 are d(u,v,w)/dx and rows 8..10 d(u,v,w)/dy per lane.
+    req.lodMode = LodMode::Gradients;
+    for (int i = 0; i < 3; ++i) {
+      req.ddx[i] = co[4 + i];
+      req.ddy[i] = co[8 + i];
+    }
   }
   if (b->prepared) b->prepared->sample(req, out);
   else sampleTexture(*b->texture, b->state, req, out);
@@ -395,7 +402,9 @@ std::vector<Vec4> shaderConstants(const DeviceState& st, bool pixel, const exec:
 // Whether the program samples sampler s (only those are prepared).
 bool programSamples(const exec::Program& p, int s) {
   for (const exec::Instr& in : p.code)
-    if (in.op >= exec::Op::Tex && in.op <= exec::Op::TexLod && in.sampler == s) return true;
+    if (((in.op >= exec::Op::Tex && in.op <= exec::Op::TexLod) || in.op == exec::Op::TexGrad) &&
+        in.sampler == s)
+      return true;
   return false;
 }
 
