@@ -1082,7 +1082,7 @@ void Validator::checkPs14(const Instruction& in, const OpcodeRule& rule) {
 
   if (in.opcode == O::TexDepth) {
     if (d.type != R::Temp || d.index != 5) error(in, "texdepth works only on r5");
-    if (phase_ != 2 || !hasPhase_) error(in, "texdepth is available only in phase 2 (after the phase marker)");
+    if (phase_ != 2) error(in, "texdepth is available only in phase 2 (after the phase marker, or in a shader without one)");
     return;
   }
   if (in.opcode == O::TexKill) {

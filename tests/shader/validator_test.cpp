@@ -715,7 +715,11 @@ TEST(ValidatorPs14, TexdepthAndBem) {
   EXPECT_TRUE(isValid("ps_2_0\ndcl t1\ntexkill t1\nmov oC0, t1"));
   EXPECT_TRUE(hasError("ps_2_0\ndcl t1\ntexkill r0\nmov oC0, t1", "r0 is read before it is written"));
   EXPECT_TRUE(hasError("ps_1_4\ntexcrd r4.rgb, t0\nphase\ntexdepth r4\nmov r0, c0", "texdepth works only on r5"));
-  EXPECT_TRUE(hasError("ps_1_4\ntexcrd r5.rgb, t0\ntexdepth r5\nmov r0, c0", "texdepth is available only in phase 2"));
+  // A ps_1_4 shader without `phase` is all phase 2 (registers-and-limits.md), so
+  // texdepth is allowed there; in phase 1 of a two-phase shader it is not.
+  EXPECT_TRUE(isValid("ps_1_4\ntexcrd r5.rgb, t0\ntexdepth r5\nmov r0, c0"));
+  EXPECT_TRUE(hasError("ps_1_4\ntexcrd r5.rgb, t0\ntexdepth r5\nphase\nmov r0, c0",
+                       "texdepth is available only in phase 2"));
   EXPECT_TRUE(isValid("ps_1_4\ntexld r1, t1\ntexcrd r2.rgb, t2\nbem r2.rg, r2, r1\nphase\ntexld r2, r2\nmov r0, r2"));
   EXPECT_TRUE(hasError("ps_1_4\ntexld r0, t0\ntexld r1, t1\nbem r2.rg, r0, r1\nmov r0, r2",
                        "bem is allowed only in phase 1 of ps_1_4"));
