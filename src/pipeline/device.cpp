@@ -716,6 +716,18 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   // between vs_3_0 and ps_3_0 (full float).
   const bool clampColors = vs && !(ps && ps->version().atLeast(3, 0) && vs->version().atLeast(3, 0));
 
+  // ps_1_1-1_3 `tex` with COUNTn|PROJECTED divides by the n-th coordinate. The pixel
+  // program divides by .w (where fixed-function T&L leaves the divisor); a vertex
+  // shader's oTm keeps its own layout, so the n-th component is copied into .w.
+  std::array<int8_t, 4> projectedDivisor{-1, -1, -1, -1};
+  if (vs && ps && ps->version().ps1x() && !ps->version().atLeast(1, 4))
+    for (int m = 0; m < 4; ++m) {
+      const uint32_t flags = st.tss(m, TSS_TEXTURETRANSFORMFLAGS);
+      const uint32_t n = flags & 0xff;
+      if ((flags & TTFF_PROJECTED) && (n == TTFF_COUNT2 || n == TTFF_COUNT3))
+        projectedDivisor[size_t(m)] = int8_t(n - 1);
+    }
+
   auto& verts = impl_->vertices;
   verts.resize(count);
   const uint32_t batches = (count + kBatchLanes - 1) / kBatchLanes;
@@ -764,6 +776,9 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
       if (clampColors)
         for (int o : {int(kVertexOutDiffuse), int(kVertexOutSpecular)})
           for (int c = 0; c < 4; ++c) sv.out[o][c] = std::clamp(sv.out[o][c], 0.0f, 1.0f);
+      for (int m = 0; m < 4; ++m)
+        if (projectedDivisor[size_t(m)] >= 0)
+          sv.out[kVertexOutTex0 + m][3] = sv.out[kVertexOutTex0 + m][projectedDivisor[size_t(m)]];
     }
   });
 
