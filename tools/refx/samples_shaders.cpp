@@ -81,6 +81,22 @@ const Assets& assets() {
   return a;
 }
 
+// The color map in stage 0 and a normal map in stage 1, both filtered with mips: the
+// texture set most of the bump-mapping samples share.
+void bindColorAndNormal(Device& dev, const Assets& a, const TexturePtr& normal) {
+  dev.setTexture(0, a.color);
+  dev.setTexture(1, normal);
+  linearSampling(dev, 0, true);
+  linearSampling(dev, 1, true);
+}
+
+// bindColorAndNormal with the plain normal map, then the globe drawn once.
+void drawColorNormalGlobe(Device& dev, const Assets& a) {
+  bindColorAndNormal(dev, a, a.normal);
+  bindGlobe(dev, a.sphere);
+  drawGlobe(dev, a.sphere);
+}
+
 std::string describe(const ValidationResult& v) {
   return v.ok ? fmt::format("valid ({} pass{})", v.passes, v.passes == 1 ? "" : "es") : v.reason;
 }
@@ -165,12 +181,7 @@ void racorx6(Device& dev, SampleResult& r) {
   dev.setVertexShader(loadVertexShader(dev, "racorx6.vsh"));
   dev.setPixelShader(loadPixelShader(dev, *pick == 0 ? "racorx6_ps14.psh" : "racorx6_ps11.psh"));
   setConstants(dev, globeScene(dev));
-  dev.setTexture(0, a.color);
-  dev.setTexture(1, a.normal);
-  linearSampling(dev, 0, true);
-  linearSampling(dev, 1, true);
-  bindGlobe(dev, a.sphere);
-  drawGlobe(dev, a.sphere);
+  drawColorNormalGlobe(dev, a);
 }
 
 SpecularTextures earthSpecular() {
@@ -214,10 +225,7 @@ void racorx9(Device& dev, SampleResult& r) {
   dev.setVertexShader(loadVertexShader(dev, ps14 ? "racorx9_ps14.vsh" : "racorx9.vsh"));
   dev.setPixelShader(loadPixelShader(dev, ps14 ? "racorx9_ps14.psh" : "racorx9_ps11.psh"));
   setConstants(dev, globeScene(dev));
-  dev.setTexture(0, a.color);
-  dev.setTexture(1, ps14 ? a.normalSpecular : a.normal);
-  linearSampling(dev, 0, true);
-  linearSampling(dev, 1, true);
+  bindColorAndNormal(dev, a, ps14 ? a.normalSpecular : a.normal);
   // ps.1.4 reads the table in the normal map's alpha at (N.H, N.H): clamped like
   // RacorX8's table, or N.H at 1 would wrap onto the table's dark first row.
   if (ps14) clampAddressing(dev, 1);
@@ -301,11 +309,8 @@ void racorx11Passes(Device& dev, SampleResult& r) {
   beginPointLight(dev);
   // first pass: diffuse(cubemap) * color, SrcColor * 1 + DestColor * 1
   setBlend(dev, true, BLEND_ONE, BLEND_ONE);
-  dev.setTexture(0, a.color);
-  dev.setTexture(1, a.normal);
+  bindColorAndNormal(dev, a, a.normal);
   dev.setTexture(2, a.cube);
-  linearSampling(dev, 0, true);
-  linearSampling(dev, 1, true);
   linearSampling(dev, 2, false);
   clampAddressing(dev, 2);
   dev.setPixelShader(loadPixelShader(dev, "racorx11_diffuse.psh"));
@@ -329,12 +334,9 @@ void racorx12Passes(Device& dev, SampleResult& r) {
   const Assets& a = assets();
   beginPointLight(dev);
   setBlend(dev, false);
-  dev.setTexture(0, a.color);
-  dev.setTexture(1, a.normal);
+  bindColorAndNormal(dev, a, a.normal);
   dev.setTexture(2, a.cube);
   dev.setTexture(3, a.table2048);
-  linearSampling(dev, 0, true);
-  linearSampling(dev, 1, true);
   for (int s : {2, 3}) {
     linearSampling(dev, s, false);
     clampAddressing(dev, s);
@@ -447,12 +449,7 @@ void paperDiffuse(Device& dev, SampleResult& r) {
   setColumnConstants(dev, globeScene(dev));
   // The shader samples the color map in t0 and the normal map in t1 (the text's
   // Texture[] list names them the other way round).
-  dev.setTexture(0, a.color);
-  dev.setTexture(1, a.normal);
-  linearSampling(dev, 0, true);
-  linearSampling(dev, 1, true);
-  bindGlobe(dev, a.sphere);
-  drawGlobe(dev, a.sphere);
+  drawColorNormalGlobe(dev, a);
 }
 
 void paperSpecularMul(Device& dev, SampleResult& r) {
@@ -462,12 +459,7 @@ void paperSpecularMul(Device& dev, SampleResult& r) {
   dev.setVertexShader(loadVertexShader(dev, "paper_specular_mul.vsh"));
   dev.setPixelShader(loadPixelShader(dev, "paper_specular_mul.psh"));
   setColumnConstants(dev, globeScene(dev));
-  dev.setTexture(0, a.color);
-  dev.setTexture(1, a.normal);
-  linearSampling(dev, 0, true);
-  linearSampling(dev, 1, true);
-  bindGlobe(dev, a.sphere);
-  drawGlobe(dev, a.sphere);
+  drawColorNormalGlobe(dev, a);
 }
 
 void paperSpecularTable(Device& dev, SampleResult& r) {
