@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#if defined(__SSE__)
+#if defined(__SSE__) || defined(__AVX__)
 #include <immintrin.h>
 #endif
 
@@ -29,38 +29,47 @@ bool compare(uint32_t func, float a, float b) { return compareValues(func, a, b)
 static bool compareU(uint32_t func, uint32_t a, uint32_t b) { return compareValues(func, a, b); }
 
 typedef float v4f __attribute__((vector_size(16)));
-typedef int32_t v4i __attribute__((vector_size(16)));
+typedef float v8f __attribute__((vector_size(32)));
+typedef int32_t v8i __attribute__((vector_size(32)));
 
-// Depth test of the live lanes of a 4x4 batch inside the surface, row by row: row r
-// holds lanes q, q+1, q+4, q+5 with q = (r/2)*8 + (r%2)*2 (see core/batch.h).
+// Depth test of the live lanes of a 4x4 batch inside the surface, two rows at a time:
+// lanes 8h..8h+7 are rows 2h and 2h+1 as r0[0] r0[1] r1[0] r1[1] r0[2] r0[3] r1[2] r1[3]
+// (quad-major, see core/batch.h), one shuffle away from the two rows' 16-byte loads.
 template <class Cmp>
 static uint16_t depthRows(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z,
                           bool writeDepth, Cmp cmp) {
-  uint16_t pass = 0;
-  const v4i laneBit{1, 2, 4, 8};
-  for (int row = 0; row < 4; ++row) {
-    const int q = (row >> 1) * 8 + (row & 1) * 2;
-    const int live = ((mask >> q) & 3) | (((mask >> (q + 4)) & 3) << 2);
+  uint32_t pass = 0;
+  const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
+  for (int h = 0; h < 2; ++h) {
+    const int live = (mask >> (8 * h)) & 0xff;
     if (!live) continue;
-    float* dp = d.depth->depth.data() + size_t(by + row) * d.width + bx;
-    v4f old;
-    __builtin_memcpy(&old, dp, sizeof old);
-    const v4f nz{z[q], z[q + 1], z[q + 4], z[q + 5]};
-    const v4i ok = cmp(nz, old) & ((laneBit & live) != 0);
-#if defined(__SSE__)
-    __m128 okf;
+    float* row0 = d.depth->depth.data() + size_t(by + 2 * h) * d.width + bx;
+    float* row1 = row0 + d.width;
+    v4f r0, r1;
+    __builtin_memcpy(&r0, row0, sizeof r0);
+    __builtin_memcpy(&r1, row1, sizeof r1);
+    const v8f old = __builtin_shufflevector(r0, r1, 0, 1, 4, 5, 2, 3, 6, 7);
+    v8f nz;
+    __builtin_memcpy(&nz, z + 8 * h, sizeof nz);
+    const v8i ok = cmp(nz, old) & ((laneBit & live) != 0);
+#if defined(__AVX__)
+    __m256 okf;
     __builtin_memcpy(&okf, &ok, sizeof okf);
-    const int bits = _mm_movemask_ps(okf);
+    const int bits = _mm256_movemask_ps(okf);
 #else
-    const int bits = (ok[0] & 1) | (ok[1] & 2) | (ok[2] & 4) | (ok[3] & 8);
+    int bits = 0;
+    for (int l = 0; l < 8; ++l) bits |= (ok[l] & 1) << l;
 #endif
-    pass |= uint16_t(((bits & 3) << q) | ((bits >> 2) << (q + 4)));
+    pass |= uint32_t(bits) << (8 * h);
     if (writeDepth && bits) {
-      const v4f r = ok ? nz : old;
-      __builtin_memcpy(dp, &r, sizeof r);
+      const v8f r = ok ? nz : old;
+      r0 = __builtin_shufflevector(r, r, 0, 1, 4, 5);
+      r1 = __builtin_shufflevector(r, r, 2, 3, 6, 7);
+      __builtin_memcpy(row0, &r0, sizeof r0);
+      __builtin_memcpy(row1, &r1, sizeof r1);
     }
   }
-  return pass;
+  return uint16_t(pass);
 }
 
 uint16_t earlyDepthTest(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z,
@@ -68,13 +77,13 @@ uint16_t earlyDepthTest(const RasterDraw& d, int bx, int by, uint16_t mask, cons
   if (bx + 4 <= d.width && by + 4 <= d.height) {
     switch (d.depthFunc) {
       case CMP_NEVER: return 0;
-      case CMP_LESS: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a < b; });
-      case CMP_EQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a == b; });
-      case CMP_LESSEQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a <= b; });
-      case CMP_GREATER: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a > b; });
-      case CMP_NOTEQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a != b; });
-      case CMP_GREATEREQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f b) { return a >= b; });
-      default: return depthRows(d, bx, by, mask, z, writeDepth, [](v4f a, v4f) { return (a == a) | (a != a); });
+      case CMP_LESS: return depthRows(d, bx, by, mask, z, writeDepth, [](v8f a, v8f b) { return a < b; });
+      case CMP_EQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v8f a, v8f b) { return a == b; });
+      case CMP_LESSEQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v8f a, v8f b) { return a <= b; });
+      case CMP_GREATER: return depthRows(d, bx, by, mask, z, writeDepth, [](v8f a, v8f b) { return a > b; });
+      case CMP_NOTEQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v8f a, v8f b) { return a != b; });
+      case CMP_GREATEREQUAL: return depthRows(d, bx, by, mask, z, writeDepth, [](v8f a, v8f b) { return a >= b; });
+      default: return depthRows(d, bx, by, mask, z, writeDepth, [](v8f a, v8f) { return (a == a) | (a != a); });
     }
   }
   uint16_t pass = 0;
@@ -144,8 +153,6 @@ static inline uint8_t toUnorm8(float v) {
 
 // Eight lanes as one value (GCC/Clang vector extensions), so the conversions below
 // are vectorised whatever the compiler's loop heuristics decide.
-typedef float v8f __attribute__((vector_size(32)));
-typedef int32_t v8i __attribute__((vector_size(32)));
 typedef uint32_t v4u __attribute__((vector_size(16)));
 typedef uint32_t v8u __attribute__((vector_size(32)));
 
@@ -156,7 +163,15 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
   alignas(64) uint32_t packed[kBatchLanes];
   const v8f zero{}, one = zero + 1.0f, k255 = zero + 255.0f, half = zero + 0.5f;
   const v8i alphaOr = v8i{} + int32_t(d.colorHasAlpha ? 0u : 0xff000000u);
-  const bool whole = mask == 0xffff && bx + 4 <= d.width && by + 4 <= d.height;
+  const bool inside = bx + 4 <= d.width && by + 4 <= d.height;
+  const bool whole = mask == 0xffff && inside;
+#if defined(__AVX2__)
+  // Inside the surface a partly covered batch is stored row by row with masked stores.
+  const bool masked = inside && !whole;
+  const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
+#else
+  const bool masked = false;
+#endif
   for (int k = 0; k < kBatchLanes; k += 8) {
     v8i q[4];
     for (int c = 0; c < 4; ++c) {
@@ -175,11 +190,29 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
       uint8_t* row = d.color + size_t(by + k / 4) * d.colorPitch + size_t(bx) * 4;
       __builtin_memcpy(row, &r0, sizeof r0);
       __builtin_memcpy(row + d.colorPitch, &r1, sizeof r1);
+    } else if (masked) {
+#if defined(__AVX2__)
+      const int live = (mask >> k) & 0xff;
+      if (!live) continue;
+      const v8i on = (laneBit & live) != 0;
+      const v4u r0 = __builtin_shufflevector(v8u(p), v8u(p), 0, 1, 4, 5);
+      const v4u r1 = __builtin_shufflevector(v8u(p), v8u(p), 2, 3, 6, 7);
+      const v4u m0 = __builtin_shufflevector(v8u(on), v8u(on), 0, 1, 4, 5);
+      const v4u m1 = __builtin_shufflevector(v8u(on), v8u(on), 2, 3, 6, 7);
+      __m128i vr0, vr1, vm0, vm1;
+      __builtin_memcpy(&vr0, &r0, sizeof vr0);
+      __builtin_memcpy(&vr1, &r1, sizeof vr1);
+      __builtin_memcpy(&vm0, &m0, sizeof vm0);
+      __builtin_memcpy(&vm1, &m1, sizeof vm1);
+      uint8_t* row = d.color + size_t(by + k / 4) * d.colorPitch + size_t(bx) * 4;
+      _mm_maskstore_epi32(reinterpret_cast<int*>(row), vm0, vr0);
+      _mm_maskstore_epi32(reinterpret_cast<int*>(row + d.colorPitch), vm1, vr1);
+#endif
     } else {
       __builtin_memcpy(packed + k, &p, sizeof p);
     }
   }
-  if (whole) return;
+  if (whole || masked) return;
   for (int l = 0; l < kBatchLanes; ++l)
     if (mask & (1 << l))
       reinterpret_cast<uint32_t*>(d.color + size_t(by + kLaneY[l]) * d.colorPitch)[bx + kLaneX[l]] = packed[l];
