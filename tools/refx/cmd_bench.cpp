@@ -32,6 +32,7 @@ struct BenchOptions {
   std::string threads = "1,2";
   std::string size = "1024x768";
   double minTime = 2.0;
+  int frames = 0;  // > 0: exactly this many measured frames, whatever the time
   std::string png;
   bool hardware = false;
 };
@@ -296,7 +297,7 @@ int runBench(const BenchOptions& o) {
         int frames = 0;
         const auto t0 = std::chrono::steady_clock::now();
         double elapsed = 0;
-        while (elapsed < o.minTime) {
+        while (o.frames > 0 ? frames < o.frames : elapsed < o.minTime) {
           frame();
           ++frames;
           elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -328,6 +329,8 @@ Action addBenchCommand(CLI::App& app) {
   cmd->add_option("--threads", o->threads, "comma-separated thread counts")->capture_default_str();
   cmd->add_option("--size", o->size, "render target WxH")->capture_default_str();
   cmd->add_option("--min-time", o->minTime, "seconds per measurement")->check(CLI::Range(0.01, 600.0))->capture_default_str();
+  cmd->add_option("--frames", o->frames, "measure exactly N frames instead of --min-time (for profilers)")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--png", o->png, "write the last frame to this PNG");
   cmd->add_flag("--hardware", o->hardware, "shader workloads in the `hardware` precision model");
   return [o] { return runBench(*o); };
