@@ -116,8 +116,10 @@ struct Footprint {
       faceDerivative(face, d, dy, b[0], b[1]);
       a[0] *= size[0], a[1] *= size[0], b[0] *= size[0], b[1] *= size[0];
       a[2] = b[2] = 0;
-    } else {  // 2D (size[2] = 0) or volume
-      for (int i = 0; i < 3; ++i) a[i] = dx[i] * size[i], b[i] = dy[i] * size[i];
+    } else {  // 2D or volume: a 2D texture's λ ignores the third coordinate (even NaN)
+      a[2] = b[2] = 0;
+      for (int i = 0; i < (type == TextureType::Volume ? 3 : 2); ++i)
+        a[i] = dx[i] * size[i], b[i] = dy[i] * size[i];
     }
     float la = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
     float lb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
@@ -827,7 +829,7 @@ bool sample2DUniform(const Fast2D& f, const float* const c[3], uint32_t mask,
   typedef float v4f __attribute__((vector_size(16)));
   v8f sq[2];
   for (int h = 0; h < 2; ++h) {
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 2; ++i) {  // 2D: u and v (see Footprint::lod)
       v8f x;
       std::memcpy(&x, c[i] + 8 * h, sizeof x);
       const v8f d = (x - __builtin_shufflevector(x, x, 0, 0, 0, 0, 4, 4, 4, 4)) * size[i];

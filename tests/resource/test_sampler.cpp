@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <cstring>
 #include <functional>
 #include <random>
@@ -339,6 +340,21 @@ TEST(Sampler, QuadDerivativesSelectTheMipLevel) {
   b.quads(0.3f, 0.3f, 4.0f / 8, 0.0f);
   b.run(*tex, s, LodMode::Derivatives);
   EXPECT_FLOAT_EQ(b.out[0][0], levelRed(2));
+}
+
+TEST(Sampler, TwoDimensionalLambdaIgnoresTheThirdCoordinate) {
+  // As QuadDerivativesSelectTheMipLevel (ρ = 2, level 1), with w varying wildly across
+  // each quad, infinite or NaN: a 2D texture's footprint has no third axis.
+  auto tex = solidLevels2D(8);
+  SamplerState s;
+  s.mipFilter = TextureFilter::Point;
+  const float odd[4] = {0.0f, 1e30f, std::numeric_limits<float>::infinity(),
+                        std::numeric_limits<float>::quiet_NaN()};
+  Batch b;
+  b.quads(0.3f, 0.3f, 2.0f / 8, 2.0f / 8);
+  for (int l = 0; l < N; ++l) b.w[l] = odd[(l + l / 4) % 4];
+  b.run(*tex, s, LodMode::Derivatives);
+  for (int l = 0; l < N; ++l) EXPECT_FLOAT_EQ(b.out[0][l], levelRed(1)) << l;
 }
 
 TEST(Sampler, PointMipRoundsLambdaToNearestLevel) {
