@@ -653,6 +653,11 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
   positionRange(AU, w, loU, hiU);
   positionRange(AV, h, loV, hiV);
   const uint32_t* texels = lv.rgba8.data();
+  struct Fetched {
+    v8u p00, p10, p01, p11;
+    v8i fixedX, fixedY;
+  };
+  [[maybe_unused]] Fetched fetched[2];
   for (int k = 0; k < kLanes; k += 8) {
     v8i x0, x1, y0, y1, fixedX, fixedY;
     axis8<AU, Linear>(u + k, float(w), loU, hiU, w, x0, x1, fixedX);
@@ -665,6 +670,8 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
         std::memcpy(out[ch] + k, &t, sizeof t);
       }
     } else {
+      // Both halves' texels are fetched before either is filtered, so that all the
+      // loads are in flight together (the filter waits on their latency).
       const v8i r1 = y1 * w;
       v8u p00, p10, p01, p11;
       if (!pairs8(x0, x1)) {
@@ -674,13 +681,19 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
         loadPairs8(texels, r0 + x0, p00, p10);
         loadPairs8(texels, r1 + x0, p01, p11);
       }
+      fetched[k / 8] = {p00, p10, p01, p11, fixedX, fixedY};
+    }
+  }
+  if constexpr (Linear) {
+    for (int k = 0; k < kLanes; k += 8) {
+      const Fetched& f = fetched[k / 8];
       const v8u m = v8u{} + 0x00ff00ffu;
-      const v16h wx2 = weightPairs(fixedX);
-      const v16h topRB = rowLerp(p00 & m, p10 & m, wx2);
-      const v16h topGA = rowLerp((p00 >> 8) & m, (p10 >> 8) & m, wx2);
-      const v16h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
-      const v16h bottomGA = rowLerp((p01 >> 8) & m, (p11 >> 8) & m, wx2);
-      const v8f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
+      const v16h wx2 = weightPairs(f.fixedX);
+      const v16h topRB = rowLerp(f.p00 & m, f.p10 & m, wx2);
+      const v16h topGA = rowLerp((f.p00 >> 8) & m, (f.p10 >> 8) & m, wx2);
+      const v16h bottomRB = rowLerp(f.p01 & m, f.p11 & m, wx2);
+      const v16h bottomGA = rowLerp((f.p01 >> 8) & m, (f.p11 >> 8) & m, wx2);
+      const v8f fy = toFloat(f.fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
       const v8f r = columnLerp<0>(topRB, bottomRB, fy), g = columnLerp<0>(topGA, bottomGA, fy);
       const v8f b = columnLerp<16>(topRB, bottomRB, fy), a = columnLerp<16>(topGA, bottomGA, fy);
       std::memcpy(out[0] + k, &r, sizeof r);
