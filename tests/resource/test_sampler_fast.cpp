@@ -150,5 +150,43 @@ TEST(SamplerFastPaths, PreparedSamplerMatchesSampleTexture) {
   EXPECT_EQ(compared, 2000 * 4 * N);
 }
 
+TEST(SamplerFastPaths, PreparedSamplerFollowsLevelChangesBetweenBatches) {
+  // One prepared sampler over many batches whose footprint, and so level and filter,
+  // changes from batch to batch in a pattern (2, 2, 1, 3, ... texels per pixel and
+  // magnification): each batch must give what sampleTexture gives, whatever level
+  // the batches before it used.
+  auto tex = Texture::create2D(Format::A8R8G8B8, 64, 64, 0);
+  std::mt19937 rng(3);
+  for (int l = 0; l < tex->levelCount(); ++l) {
+    uint8_t* p = tex->data(0, l);
+    for (size_t i = 0; i < tex->dataSize(0, l); ++i) p[i] = uint8_t(rng());
+  }
+  tex->markDirty();
+  SamplerState s;
+  s.magFilter = TextureFilter::Point;  // magnified batches switch filter as well as level
+  s.minFilter = TextureFilter::Linear;
+  s.mipFilter = TextureFilter::Point;
+  const PreparedSampler prepared(*tex, s);
+  const float texelsPerPixel[] = {2, 2, 1, 4, 4, 0.5f, 8, 2, 1, 1, 16, 0.25f};
+  int mismatches = 0;
+  for (int batch = 0; batch < 240; ++batch) {
+    const float step = texelsPerPixel[batch % 12] / 64.0f, u0 = float(batch % 7) * 0.1f;
+    alignas(64) float u[N], v[N];
+    for (int l = 0; l < N; ++l) {
+      const int q = l / 4;
+      u[l] = u0 + step * float((q & 1) * 2 + (l & 1));
+      v[l] = u0 + step * float((q >> 1) * 2 + ((l >> 1) & 1));
+    }
+    SampleRequest req;
+    req.u = u, req.v = v;
+    req.lodMode = LodMode::Derivatives;
+    float a[4][N], b[4][N];
+    sampleTexture(*tex, s, req, a);
+    prepared.sample(req, b);
+    mismatches += std::memcmp(a, b, sizeof a) != 0;
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
 }  // namespace
 }  // namespace refx
