@@ -520,13 +520,22 @@ void wrapTowards(double base, double& v) {
   v -= shift;
 }
 
+// std::llround (halves away from zero) inline: the libm call was a good part of
+// triangle setup. x - trunc(x) is exact for every double.
+inline int64_t roundHalfAway(double x) {
+  if (!(std::fabs(x) < 0x1p52)) return std::llround(x);  // huge or NaN: libm decides
+  const double t = std::trunc(x);
+  const int64_t i = int64_t(t);
+  return std::fabs(x - t) >= 0.5 ? (x < 0 ? i - 1 : i + 1) : i;
+}
+
 void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, const Rect& bounds,
                    bool flat) {
   constexpr double one = double(1 << kSubPixelBits);
   int64_t X[3], Y[3];
   for (int i = 0; i < 3; ++i) {
-    X[i] = std::llround(double(sv[i].x) * one);
-    Y[i] = std::llround(double(sv[i].y) * one);
+    X[i] = roundHalfAway(double(sv[i].x) * one);
+    Y[i] = roundHalfAway(double(sv[i].y) * one);
   }
   const int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
   if (area == 0) return;
