@@ -352,6 +352,10 @@ void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatc
       for (int l = 0; l < kBatchLanes; ++l) out[c][l] = c == 3 ? 1.0f : 0.0f;
     return;
   }
+  if (mode == exec::SampleMode::Implicit && b->prepared) {
+    b->prepared->sampleImplicit(co[0], co[1], co[2], laneMask, out);
+    return;
+  }
   SampleRequest req;
   req.u = co[0];
   req.v = co[1];

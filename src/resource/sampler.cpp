@@ -829,8 +829,8 @@ struct Fast2D {
 // λ per quad and the level it selects, with the operations of computeLambda and
 // planLevels for a 2D texture (MIPFILTER NONE or POINT); when all four quads agree,
 // samples the batch with one kernel call. Returns false to leave it to the general path.
-bool sample2DUniform(const Fast2D& f, const float* const c[3], uint32_t mask,
-                     float out[4][kLanes]) {
+[[gnu::always_inline]] inline bool sample2DUniform(const Fast2D& f, const float* const c[3],
+                                                  uint32_t mask, float out[4][kLanes]) {
   const SamplerState& st = *f.st;
   const int magLinear = f.magLinear, minLinear = f.minLinear;
   const bool mipNone = f.mipNone;
@@ -1054,6 +1054,25 @@ void PreparedSampler::sample(const SampleRequest& req, float out[4][kBatchLanes]
         p->st.mipFilter != TextureFilter::Linear && sample2DUniform(p->fast, c, req.laneMask, out))
       return;
   }
+  sampleImpl(*tex_, state_, req, out, true);
+}
+
+void PreparedSampler::sampleImplicit(const float* u, const float* v, const float* w,
+                                     uint16_t laneMask, float out[4][kBatchLanes]) const {
+  const auto* p = static_cast<const PreparedPlan*>(plan_.get());
+  const float* c[3] = {u ? u : kZeros, v ? v : kZeros, w ? w : kZeros};
+  // The choices of sample() for a LodMode::Derivatives request, in the same order.
+  if (p && p->single) {
+    p->single(*p->levels[0], c[0], c[1], out);
+    if (laneMask != 0xffff) clearLanes(out, laneMask);
+    return;
+  }
+  if (p && p->needLambda && p->st.mipFilter != TextureFilter::Linear &&
+      sample2DUniform(p->fast, c, laneMask, out))
+    return;
+  SampleRequest req;
+  req.u = u, req.v = v, req.w = w;
+  req.laneMask = laneMask;
   sampleImpl(*tex_, state_, req, out, true);
 }
 

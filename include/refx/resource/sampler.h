@@ -64,6 +64,10 @@ class PreparedSampler {
  public:
   PreparedSampler(const Texture& tex, const SamplerState& state);
   void sample(const SampleRequest& req, float out[4][kBatchLanes]) const;
+  // The common request on its own (λ from quad derivatives, coordinate rows u, v, w):
+  // what sample() gives for it, without building a SampleRequest.
+  void sampleImplicit(const float* u, const float* v, const float* w, uint16_t laneMask,
+                      float out[4][kBatchLanes]) const;
 
  private:
   const Texture* tex_;
