@@ -113,7 +113,7 @@ TEST(SamplerFastPaths, PreparedSamplerMatchesSampleTexture) {
       }
     tex->markDirty();
   }
-  int compared = 0;
+  int compared = 0, implicitCompared = 0;
   for (int iter = 0; iter < 2000; ++iter) {
     const Texture& tex = *textures[iter % 4];
     SamplerState s;
@@ -146,8 +146,15 @@ TEST(SamplerFastPaths, PreparedSamplerMatchesSampleTexture) {
         ASSERT_EQ(std::memcmp(&a[ch][l], &b[ch][l], 4), 0) << "iter " << iter << " ch " << ch;
         ++compared;
       }
+    if (req.lodMode == LodMode::Derivatives) {  // the same request through sampleImplicit
+      float c[4][N];
+      prepared.sampleImplicit(u, v, w, req.laneMask, c);
+      ASSERT_EQ(std::memcmp(a, c, sizeof a), 0) << "iter " << iter;
+      ++implicitCompared;
+    }
   }
   EXPECT_EQ(compared, 2000 * 4 * N);
+  EXPECT_GT(implicitCompared, 500);  // about a third of the requests
 }
 
 TEST(SamplerFastPaths, PreparedSamplerFollowsLevelChangesBetweenBatches) {
