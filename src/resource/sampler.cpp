@@ -531,19 +531,22 @@ inline v8u load8(const uint32_t* texels, v8i a) {
 #endif
 }
 
-// Whether every lane's second column is the next texel in memory (no wrap or clamp
-// at the row end), so both columns come from one 64-bit load.
-inline bool pairs8(v8i x0, v8i x1) {
-  const v8i next = (x1 - x0) == 1;
+// Whether b - a = d in every lane.
+inline bool allDiffer(v8i a, v8i b, int d) {
+  const v8i same = (b - a) == d;
 #if defined(__AVX2__)
   __m256i m;
-  std::memcpy(&m, &next, sizeof m);
+  std::memcpy(&m, &same, sizeof m);
   return _mm256_movemask_epi8(m) == -1;
 #else
   const v8i all = v8i{} - 1;
-  return __builtin_memcmp(&next, &all, sizeof next) == 0;
+  return __builtin_memcmp(&same, &all, sizeof same) == 0;
 #endif
 }
+
+// Whether every lane's second column is the next texel in memory (no wrap or clamp
+// at the row end), so both columns come from one 64-bit load.
+inline bool pairs8(v8i x0, v8i x1) { return allDiffer(x0, x1, 1); }
 
 // Texels a[l] and a[l] + 1 of every lane.
 inline void loadPairs8(const uint32_t* texels, v8i a, v8u& first, v8u& second) {
@@ -577,6 +580,45 @@ inline void loadPairs8(const uint32_t* texels, v8i a, v8u& first, v8u& second) {
   std::memcpy(&h, &hi, sizeof h);
   first = __builtin_shufflevector(l, h, 0, 2, 8, 10, 4, 6, 12, 14);
   second = __builtin_shufflevector(l, h, 1, 3, 9, 11, 5, 7, 13, 15);
+}
+
+// Texel pairs a[l], a[l] + 1 (top row) and a[l] + w, a[l] + w + 1 (bottom row) of every
+// lane. Scalar 64-bit loads, the indices read back from memory: on current x86 cores
+// this beats four vpgatherdq, which contend with the filter arithmetic for the vector
+// pipes.
+inline void loadQuads8(const uint32_t* texels, v8i a, int w, v8u& p00, v8u& p10, v8u& p01,
+                       v8u& p11) {
+  alignas(32) int ix[8];
+  std::memcpy(ix, &a, sizeof ix);
+#if defined(__AVX2__)
+#if defined(__GNUC__)
+  asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
+#endif
+  __m128i q[8];
+  for (int l = 0; l < 8; ++l) {
+    const uint32_t* t = texels + ix[l];
+    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(t));
+    q[l] = _mm_castpd_si128(
+        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(t + w)));
+  }
+  // q[l] = t00 t10 t01 t11 of lane l. Lanes l and l + 4 share a register (one per
+  // 128-bit half), then a 4x4 transpose within each half gives the four texel vectors.
+  __m256i r[4];
+  for (int l = 0; l < 4; ++l) r[l] = _mm256_setr_m128i(q[l], q[l + 4]);
+  const __m256i a01 = _mm256_unpacklo_epi32(r[0], r[1]), b01 = _mm256_unpackhi_epi32(r[0], r[1]);
+  const __m256i a23 = _mm256_unpacklo_epi32(r[2], r[3]), b23 = _mm256_unpackhi_epi32(r[2], r[3]);
+  const __m256i c[4] = {_mm256_unpacklo_epi64(a01, a23), _mm256_unpackhi_epi64(a01, a23),
+                        _mm256_unpacklo_epi64(b01, b23), _mm256_unpackhi_epi64(b01, b23)};
+  std::memcpy(&p00, &c[0], sizeof p00);
+  std::memcpy(&p10, &c[1], sizeof p10);
+  std::memcpy(&p01, &c[2], sizeof p01);
+  std::memcpy(&p11, &c[3], sizeof p11);
+#else
+  for (int l = 0; l < 8; ++l) {
+    const uint32_t* t = texels + ix[l];
+    p00[l] = t[0], p10[l] = t[1], p01[l] = t[w], p11[l] = t[w + 1];
+  }
+#endif
 }
 
 inline v8f channel(v8u p, int shift) { return __builtin_convertvector(v8i((p >> shift) & 255u), v8f); }
@@ -674,7 +716,10 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
       // loads are in flight together (the filter waits on their latency).
       const v8i r1 = y1 * w;
       v8u p00, p10, p01, p11;
-      if (!pairs8(x0, x1)) {
+      const bool pairs = pairs8(x0, x1);
+      if (pairs && allDiffer(r0, r1, w)) {  // the 2x2 texels are a block in memory
+        loadQuads8(texels, r0 + x0, w, p00, p10, p01, p11);
+      } else if (!pairs) {
         p00 = load8(texels, r0 + x0), p10 = load8(texels, r0 + x1);
         p01 = load8(texels, r1 + x0), p11 = load8(texels, r1 + x1);
       } else {
