@@ -41,8 +41,8 @@ static uint16_t depthRows(const RasterDraw& d, int bx, int by, uint16_t mask, co
   uint32_t pass = 0;
   const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
   for (int h = 0; h < 2; ++h) {
+    // No branches on the coverage: on small triangles they are hard to predict.
     const int live = (mask >> (8 * h)) & 0xff;
-    if (!live) continue;
     float* row0 = d.depth->depth.data() + size_t(by + 2 * h) * d.width + bx;
     float* row1 = row0 + d.width;
     v4f r0, r1;
@@ -61,7 +61,7 @@ static uint16_t depthRows(const RasterDraw& d, int bx, int by, uint16_t mask, co
     for (int l = 0; l < 8; ++l) bits |= (ok[l] & 1) << l;
 #endif
     pass |= uint32_t(bits) << (8 * h);
-    if (writeDepth && bits) {
+    if (writeDepth) {  // lanes that fail write their old depth back
       const v8f r = ok ? nz : old;
       r0 = __builtin_shufflevector(r, r, 0, 1, 4, 5);
       r1 = __builtin_shufflevector(r, r, 2, 3, 6, 7);
@@ -193,7 +193,6 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
     } else if (masked) {
 #if defined(__AVX2__)
       const int live = (mask >> k) & 0xff;
-      if (!live) continue;
       const v8i on = (laneBit & live) != 0;
       const v4u r0 = __builtin_shufflevector(v8u(p), v8u(p), 0, 1, 4, 5);
       const v4u r1 = __builtin_shufflevector(v8u(p), v8u(p), 2, 3, 6, 7);
