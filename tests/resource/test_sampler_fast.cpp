@@ -83,7 +83,9 @@ TEST(SamplerFastPaths, WrapAtThePeriodEnds) {
     for (int ch = 0; ch < 4; ++ch)
       for (int l = 0; l < N; ++l) ASSERT_EQ(fast[ch][l], ref[ch][l]) << "ch " << ch << " lane " << l;
     // lane 0: u = v = -1e-9 (v from ends[3] = 0 here: row 0). POINT: texel (0, 0) red.
-    if (f == TextureFilter::Point) EXPECT_EQ(fast[0][0], float(p[2]) / 255.0f);
+    if (f == TextureFilter::Point) {
+      EXPECT_EQ(fast[0][0], float(p[2]) / 255.0f);
+    }
     // LINEAR, lane 0: x between texels 3 and 0 at weight 1/2, y = 0·3 - 0.5: rows 2 and 0
     // at 1/2: red = (p(3,0) + p(0,0) + p(3,2) + p(0,2))·1/4.
     if (f == TextureFilter::Linear) {
