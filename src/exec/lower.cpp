@@ -778,7 +778,9 @@ class Lowerer {
         return true;
       case Opcode::TexKill: {
         // ps_1_4 tests x, y, z; ps_2_0+ the components of the operand's mask (w too).
-        Src s = srcOf(in, sh::SrcParam{in.dst.type, in.dst.index});
+        sh::SrcParam operand;
+        operand.type = in.dst.type, operand.index = in.dst.index;
+        Src s = srcOf(in, operand);
         Instr& i = p_.emit(Op::Kill, dst(RegFile::Temp, 0, ps14_ ? kMaskXYZ : in.dst.writeMask), s);
         (void)i;
         out_.kills = true;
@@ -786,7 +788,9 @@ class Lowerer {
       }
       case Opcode::TexDepth: {
         // depth = r5.r / r5.g (1.0 where g is 0)
-        Src r5 = srcOf(in, sh::SrcParam{RegType::Temp, in.dst.index});
+        sh::SrcParam r5Param;
+        r5Param.type = RegType::Temp, r5Param.index = in.dst.index;
+        Src r5 = srcOf(in, r5Param);
         p_.emit(Op::Quot, dst(RegFile::Output, kPixelOutDepth, 0x1), withSwizzle(r5, kSwzXXXX),
                 withSwizzle(r5, kSwzYYYY));
         out_.writesDepth = true;

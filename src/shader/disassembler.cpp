@@ -69,9 +69,9 @@ std::string relativeText(const RelativeAddress& rel) {
 std::string registerText(RegType type, uint16_t index, bool relative, const RelativeAddress& rel,
                          Version version) {
   if (!relative) return registerName(type, index, version);
-  std::string s = std::string(registerTypeName(type, version)) + "[" + relativeText(rel);
-  if (index != 0) s += "+" + std::to_string(index);
-  return s + "]";
+  // fmt rather than string concatenation: GCC 12 warns falsely (-Wrestrict) on the latter.
+  return index != 0 ? fmt::format("{}[{}+{}]", registerTypeName(type, version), relativeText(rel), index)
+                    : fmt::format("{}[{}]", registerTypeName(type, version), relativeText(rel));
 }
 
 std::string srcText(const SrcParam& s, Version version) {
@@ -280,8 +280,8 @@ void appendCtabHeader(std::string& out, const Ctab& t) {
   out += fmt::format("//   {} ----- ----\n", std::string(width, '-'));
   static const char kSetLetter[] = {'b', 'i', 'c', 's'};
   for (const CtabConstant& c : t.constants) {
-    std::string reg = (c.registerSet >= 0 && c.registerSet < 4 ? std::string(1, kSetLetter[c.registerSet]) : "?") +
-                      std::to_string(c.registerIndex);
+    const char set = c.registerSet >= 0 && c.registerSet < 4 ? kSetLetter[c.registerSet] : '?';
+    const std::string reg = fmt::format("{}{}", set, c.registerIndex);
     out += fmt::format("//   {:<{}} {:<5} {:>4}\n", c.name, width, reg, c.registerCount);
   }
   out += "//\n";

@@ -65,7 +65,7 @@ TEST(LowerRobustness, RandomInstructionStreams) {
       in.predicated = pick(10) == 0;
       in.predicateNot = pick(2) == 0;
       in.coissue = pick(8) == 0;
-      in.literal = {rng(), rng(), uint32_t(pick(300)), rng()};
+      in.literal = {uint32_t(rng()), uint32_t(rng()), uint32_t(pick(300)), uint32_t(rng())};
       in.usage = sh::DeclUsage(pick(14));
       in.usageIndex = uint8_t(pick(10));
       in.textureType = sh::TextureType(pick(5));

@@ -463,7 +463,9 @@ void expectSameInstruction(const Instruction& a, const Instruction& b, size_t n)
     EXPECT_EQ(a.dst.resultMod, b.dst.resultMod);
     EXPECT_EQ(a.dst.shift, b.dst.shift);
     EXPECT_EQ(a.dst.relative, b.dst.relative);
-    if (a.dst.relative) EXPECT_TRUE(sameRel(a.dst.rel, b.dst.rel));
+    if (a.dst.relative) {
+      EXPECT_TRUE(sameRel(a.dst.rel, b.dst.rel));
+    }
   }
   EXPECT_EQ(a.srcCount, b.srcCount);
   for (int i = 0; i < std::min<int>(a.srcCount, b.srcCount); ++i) {
@@ -472,7 +474,9 @@ void expectSameInstruction(const Instruction& a, const Instruction& b, size_t n)
     EXPECT_EQ(a.src[i].swizzle, b.src[i].swizzle) << "src " << i;
     EXPECT_EQ(int(a.src[i].mod), int(b.src[i].mod)) << "src " << i;
     EXPECT_EQ(a.src[i].relative, b.src[i].relative) << "src " << i;
-    if (a.src[i].relative) EXPECT_TRUE(sameRel(a.src[i].rel, b.src[i].rel)) << "src " << i;
+    if (a.src[i].relative) {
+      EXPECT_TRUE(sameRel(a.src[i].rel, b.src[i].rel)) << "src " << i;
+    }
   }
   EXPECT_EQ(a.literal, b.literal);
   if (a.opcode == Opcode::Dcl) {

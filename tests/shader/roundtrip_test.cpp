@@ -22,7 +22,7 @@ namespace {
 
 std::vector<fs::path> shaderSources() {
   std::vector<fs::path> files;
-  for (const fs::path dir : {fs::path(REFX_DATA_DIR) / "shaders", fs::path(REFX_TEST_DIR) / "shader" / "asm"}) {
+  for (const fs::path& dir : {fs::path(REFX_DATA_DIR) / "shaders", fs::path(REFX_TEST_DIR) / "shader" / "asm"}) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) continue;
     for (const auto& e : fs::recursive_directory_iterator(dir, ec)) {
