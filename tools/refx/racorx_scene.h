@@ -85,17 +85,6 @@ inline d3dx::Mesh globe(uint32_t slices = 48, uint32_t stacks = 24) {
   return d3dx::createTexturedSphere(1.0f, slices, stacks);
 }
 
-inline void bindGlobe(Device& dev, const d3dx::Mesh& m) {
-  dev.setFVF(m.fvf);
-  auto vb = std::make_shared<VertexBuffer>();
-  vb->data = m.vertices;
-  dev.setStreamSource(0, vb, 0, m.stride);
-  auto ib = std::make_shared<IndexBuffer>();
-  ib->index32 = true;
-  ib->data = m.indexBufferData(true);
-  dev.setIndices(ib);
-}
-
 inline void drawGlobe(Device& dev, const d3dx::Mesh& m) {
   dev.drawIndexedPrimitive(d3d::PT_TRIANGLELIST, 0, 0, m.vertexCount(), 0, m.faceCount());
 }

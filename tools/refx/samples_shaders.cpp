@@ -93,7 +93,7 @@ void bindColorAndNormal(Device& dev, const Assets& a, const TexturePtr& normal) 
 // bindColorAndNormal with the plain normal map, then the globe drawn once.
 void drawColorNormalGlobe(Device& dev, const Assets& a) {
   bindColorAndNormal(dev, a, a.normal);
-  bindGlobe(dev, a.sphere);
+  bindMesh(dev, a.sphere);
   drawGlobe(dev, a.sphere);
 }
 
@@ -196,7 +196,7 @@ void racorx7(Device& dev, SampleResult& r) {
                                   r);
   if (!pick) return;
   setupRacorX7(dev, globeScene(dev), earthSpecular(), *pick == 0 ? PSVersion::PS14 : PSVersion::PS11);
-  bindGlobe(dev, assets().sphere);
+  bindMesh(dev, assets().sphere);
   drawGlobe(dev, assets().sphere);
 }
 
@@ -208,7 +208,7 @@ void racorx8(Device& dev, SampleResult& r) {
       r);
   if (!pick) return;
   setupRacorX8(dev, globeScene(dev), earthSpecular(), *pick == 0 ? PSVersion::PS14 : PSVersion::PS11);
-  bindGlobe(dev, assets().sphere);
+  bindMesh(dev, assets().sphere);
   drawGlobe(dev, assets().sphere);
 }
 
@@ -229,7 +229,7 @@ void racorx9(Device& dev, SampleResult& r) {
   // ps.1.4 reads the table in the normal map's alpha at (N.H, N.H): clamped like
   // RacorX8's table, or N.H at 1 would wrap onto the table's dark first row.
   if (ps14) clampAddressing(dev, 1);
-  bindGlobe(dev, a.sphere);
+  bindMesh(dev, a.sphere);
   drawGlobe(dev, a.sphere);
 }
 
@@ -277,7 +277,7 @@ void beginPointLight(Device& dev) {
   dev.setRenderState(RS_ZENABLE, ZB_TRUE);
   dev.setRenderState(RS_ZFUNC, CMP_LESSEQUAL);
   setPointLightConstants(dev);
-  bindGlobe(dev, assets().sphere);
+  bindMesh(dev, assets().sphere);
 }
 
 void racorx10Passes(Device& dev, SampleResult& r) {
@@ -476,7 +476,7 @@ void paperSpecularTable(Device& dev, SampleResult& r) {
   linearSampling(dev, 2, false);
   clampAddressing(dev, 2);
   linearSampling(dev, 3, true);
-  bindGlobe(dev, a.sphere);
+  bindMesh(dev, a.sphere);
   drawGlobe(dev, a.sphere);
 }
 
@@ -500,7 +500,7 @@ void paperEmboss(Device& dev, SampleResult& r) {
   setMatrix(dev, 8, v.world * v.view * v.projection);
   setVec(dev, 12, Vec4(normalize(transformNormal(kTowardLight, inv)), 0));  // c12: toward the light
   setVec(dev, 24, Vec4(1.5f / 512.0f, 1.5f / 256.0f, 0, 0));  // offset: 1.5 texels of the height map
-  bindGlobe(dev, a.sphere);
+  bindMesh(dev, a.sphere);
   dev.setTexture(0, a.height);
   dev.setTextureStageState(0, TSS_COLOROP, TOP_SELECTARG1);
   dev.setTextureStageState(0, TSS_COLORARG1, TA_TEXTURE);
@@ -559,7 +559,7 @@ void hemisphereVertex(Device& dev, SampleResult& r) {
   dev.setTextureStageState(0, TSS_COLORARG1, TA_DIFFUSE);
   dev.setTextureStageState(0, TSS_ALPHAOP, TOP_SELECTARG1);
   dev.setTextureStageState(0, TSS_ALPHAARG1, TA_DIFFUSE);
-  bindGlobe(dev, teapot);
+  bindMesh(dev, teapot);
   drawGlobe(dev, teapot);
 }
 
@@ -581,7 +581,7 @@ void hemispherePixel(Device& dev, SampleResult& r) {
   dev.setTexture(1, a.color);
   linearSampling(dev, 0, true);
   linearSampling(dev, 1, true);
-  bindGlobe(dev, a.sphere);
+  bindMesh(dev, a.sphere);
   drawGlobe(dev, a.sphere);
 }
 
@@ -620,7 +620,7 @@ void brdf(Device& dev, SampleResult& r) {
     clampAddressing(dev, st);
   }
   linearSampling(dev, 3, true);
-  bindGlobe(dev, a.sphere);
+  bindMesh(dev, a.sphere);
   drawGlobe(dev, a.sphere);
 }
 
