@@ -58,7 +58,7 @@ std::vector<uint8_t> render(bool racorx8, Precision precision) {
   else
     samples::racorx::setupRacorX7(dev, v, textures, PSVersion::PS11);
   static const d3dx::Mesh sphere = samples::racorx::globe(64, 32);
-  samples::racorx::bindGlobe(dev, sphere);
+  samples::bindMesh(dev, sphere);
   samples::racorx::drawGlobe(dev, sphere);
 
   const Texture& rt = *dev.renderTarget();

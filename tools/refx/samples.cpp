@@ -415,16 +415,6 @@ SampleResult renderShapes(Device& dev) {
 
 }  // namespace
 
-void bindMesh(Device& dev, const d3dx::Mesh& m) {
-  dev.setFVF(m.fvf);
-  auto vb = std::make_shared<VertexBuffer>();
-  vb->data = m.vertices;
-  dev.setStreamSource(0, vb, 0, m.stride);
-  auto ib = std::make_shared<IndexBuffer>();
-  ib->index32 = true;
-  ib->data = m.indexBufferData(true);
-  dev.setIndices(ib);
-}
 
 const std::vector<Sample>& allSamples() {
   static const std::vector<Sample> samples = {

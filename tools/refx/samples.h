@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh_binding.h"
 #include "refx/d3dx/mesh.h"
 #include "refx/pipeline/device.h"
 
@@ -28,7 +29,5 @@ const std::vector<Sample>& allSamples();
 // hemisphere lighting, the BRDF pair); allSamples() lists them after the others.
 const std::vector<Sample>& shaderSamples();
 
-// Sets the mesh's FVF, a vertex buffer on stream 0 and a 32-bit index buffer.
-void bindMesh(Device& dev, const d3dx::Mesh& mesh);
 
 }  // namespace refx::samples
