@@ -3,6 +3,7 @@
 // every addressing pair), and PreparedSampler against sampleTexture.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -157,6 +158,27 @@ TEST(SamplerFastPaths, PreparedSamplerMatchesSampleTexture) {
   }
   EXPECT_EQ(compared, 2000 * 4 * N);
   EXPECT_GT(implicitCompared, 500);  // about a third of the requests
+}
+
+TEST(SamplerFastPaths, PointSamplingGivesEveryByteOver255) {
+  // A 256x1 texture whose texel i holds the byte i in all four channels: POINT at texel
+  // centres returns exactly i/255 (D3D's unorm conversion), for every byte value.
+  auto tex = Texture::create2D(Format::A8R8G8B8, 256, 1, 1);
+  uint8_t* p = tex->data(0, 0);
+  for (int i = 0; i < 256; ++i) std::fill_n(p + 4 * i, 4, uint8_t(i));
+  tex->markDirty();
+  const SamplerState s;  // POINT, WRAP
+  for (int first = 0; first < 256; first += N) {
+    alignas(64) float u[N], v[N];
+    for (int l = 0; l < N; ++l) u[l] = (float(first + l) + 0.5f) / 256.0f, v[l] = 0.5f;
+    SampleRequest req;
+    req.u = u, req.v = v;
+    float out[4][N];
+    sampleTexture(*tex, s, req, out);
+    for (int ch = 0; ch < 4; ++ch)
+      for (int l = 0; l < N; ++l)
+        ASSERT_EQ(out[ch][l], float(first + l) / 255.0f) << "byte " << first + l << " ch " << ch;
+  }
 }
 
 TEST(SamplerFastPaths, PreparedSamplerFollowsLevelChangesBetweenBatches) {
