@@ -516,11 +516,20 @@ inline void axis8(const float* c, float fn, float lo, float hi, int n, v8i& i0, 
   }
 }
 
+// Eight texels by index. The indices go through memory and the texels are inserted one
+// by one: on current x86 cores that beats vpgatherdd.
 inline v8u load8(const uint32_t* texels, v8i a) {
 #if defined(__AVX2__)
-  __m256i idx;
-  std::memcpy(&idx, &a, sizeof idx);
-  const __m256i g = _mm256_i32gather_epi32(reinterpret_cast<const int*>(texels), idx, 4);
+  alignas(32) int ix[8];
+  std::memcpy(ix, &a, sizeof ix);
+#if defined(__GNUC__)
+  asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
+#endif
+  __m128i lo = _mm_cvtsi32_si128(int(texels[ix[0]])), hi = _mm_cvtsi32_si128(int(texels[ix[4]]));
+  lo = _mm_insert_epi32(lo, int(texels[ix[1]]), 1), hi = _mm_insert_epi32(hi, int(texels[ix[5]]), 1);
+  lo = _mm_insert_epi32(lo, int(texels[ix[2]]), 2), hi = _mm_insert_epi32(hi, int(texels[ix[6]]), 2);
+  lo = _mm_insert_epi32(lo, int(texels[ix[3]]), 3), hi = _mm_insert_epi32(hi, int(texels[ix[7]]), 3);
+  const __m256i g = _mm256_setr_m128i(lo, hi);
   v8u p;
   std::memcpy(&p, &g, sizeof p);
   return p;
