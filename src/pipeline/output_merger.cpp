@@ -161,7 +161,8 @@ typedef uint32_t v8u __attribute__((vector_size(32)));
 static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
                         const float (*color)[kBatchLanes]) {
   alignas(64) uint32_t packed[kBatchLanes];
-  const v8f zero{}, one = zero + 1.0f, k255 = zero + 255.0f, half = zero + 0.5f;
+  const v8f zero{}, k255 = zero + 255.0f, half = zero + 0.5f;
+  [[maybe_unused]] const v8f one = zero + 1.0f;
   const v8i alphaOr = v8i{} + int32_t(d.colorHasAlpha ? 0u : 0xff000000u);
   const bool inside = bx + 4 <= d.width && by + 4 <= d.height;
   const bool whole = mask == 0xffff && inside;
@@ -178,8 +179,17 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
       v8f v;
       __builtin_memcpy(&v, color[c] + k, sizeof v);
       // Same rounding as toUnorm8; NaN and negatives become 0.
+#if defined(__AVX__)
+      // vmaxps/vminps return their second operand for NaN and for equal values (±0),
+      // so these are exactly v > 0 ? v : 0 and v < 1 ? v : 1 in one instruction each.
+      __m256 m;
+      __builtin_memcpy(&m, &v, sizeof m);
+      m = _mm256_min_ps(_mm256_max_ps(m, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
+      __builtin_memcpy(&v, &m, sizeof v);
+#else
       v = v > zero ? v : zero;
       v = v < one ? v : one;
+#endif
       q[c] = __builtin_convertvector(v * k255 + half, v8i);
     }
     const v8i p = ((q[3] << 24) | alphaOr) | (q[0] << 16) | (q[1] << 8) | q[2];
