@@ -3,6 +3,7 @@
 // (`texture`, fixed function), or shaded by RacorX6's ps.1.1 diffuse bump shader
 // (`racorx6`, llvmpipe's `diffuse`) or RacorX9's ps.1.1 diffuse + specular shader
 // (`racorx9`, llvmpipe's `specular`), with the same textures, geometry and lights.
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -259,21 +260,33 @@ int runBench(const BenchOptions& o) {
   int w = 0, h = 0;
   if (std::sscanf(o.size.c_str(), "%dx%d", &w, &h) != 2 || w < 16 || h < 16 || w > 8192 || h > 8192)
     fail("--size: expected WxH between 16 and 8192, got '{}'", o.size);
+  // Every list is checked before the table starts, so a typo gives only the error.
+  const std::vector<std::string> workloads = splitList(o.workloads), geoms = splitList(o.geoms);
+  for (const auto& wl : workloads)
+    if (wl != "texture" && wl != "racorx6" && wl != "racorx9")
+      fail("--workload: unknown workload '{}' (available: texture, racorx6, racorx9)", wl);
+  for (const auto& geom : geoms)
+    if (geom != "quad" && geom != "sphere")
+      fail("--geom: unknown geometry '{}' (available: quad, sphere)", geom);
+  std::vector<int> threadCounts;
+  for (const auto& ts : splitList(o.threads)) {
+    int n = 0;
+    const auto [end, ec] = std::from_chars(ts.data(), ts.data() + ts.size(), n);
+    if (ec != std::errc() || end != ts.data() + ts.size() || n < 1 || n > 256)
+      fail("--threads: expected counts 1-256, got '{}'", ts);
+    threadCounts.push_back(n);
+  }
   const bool tty = stderrIsTerminal();
   const TexturePtr tex = checkerTexture(1024);
   TexturePtr normal;  // made when a shader workload needs it
   std::printf("%-10s %-7s %-10s %7s %9s %10s %12s\n", "workload", "geom", "res", "threads", "fps",
               "Mpix/s", "px/frame");
-  for (const auto& wl : splitList(o.workloads)) {
-    if (wl != "texture" && wl != "racorx6" && wl != "racorx9")
-      fail("--workload: unknown workload '{}' (available: texture, racorx6, racorx9)", wl);
+  for (const auto& wl : workloads) {
     const bool shaded = wl != "texture";
     if (shaded && !normal) normal = bumpNormalTexture(1024);
-    for (const auto& geom : splitList(o.geoms)) {
+    for (const auto& geom : geoms) {
       const Scene scene = makeScene(geom, shaded);
-      for (const auto& ts : splitList(o.threads)) {
-        const int threads = std::atoi(ts.c_str());
-        if (threads < 1 || threads > 256) fail("--threads: expected counts 1-256, got '{}'", ts);
+      for (const int threads : threadCounts) {
         DeviceOptions opt;
         opt.threads = threads;
         opt.precision = o.hardware ? Precision::Hardware : Precision::Exact;
