@@ -51,8 +51,9 @@ struct Coords {
   int batches() const { return int(u.size()) / kBatchLanes; }
 };
 
-void run(benchmark::State& state, const Texture& tex, const SamplerState& ss, float step,
-         bool scattered = false) {
+// Samples batch after batch with sample(req, out) (sampleTexture or a prepared sampler).
+template <class Sample>
+void runWith(benchmark::State& state, float step, bool scattered, Sample sample) {
   Coords c(step, scattered);
   float out[4][kBatchLanes];
   int64_t samples = 0;
@@ -61,13 +62,19 @@ void run(benchmark::State& state, const Texture& tex, const SamplerState& ss, fl
     SampleRequest req;
     req.u = &c.u[b * kBatchLanes];
     req.v = &c.v[b * kBatchLanes];
-    sampleTexture(tex, ss, req, out);
+    sample(req, out);
     benchmark::DoNotOptimize(out);
     benchmark::ClobberMemory();
     b = b + 1 == c.batches() ? 0 : b + 1;
     samples += kBatchLanes;
   }
   state.SetItemsProcessed(samples);
+}
+
+void run(benchmark::State& state, const Texture& tex, const SamplerState& ss, float step,
+         bool scattered = false) {
+  runWith(state, step, scattered,
+          [&](const SampleRequest& req, float (*out)[kBatchLanes]) { sampleTexture(tex, ss, req, out); });
 }
 
 void BM_BilinearRGBA8(benchmark::State& state) {
@@ -104,21 +111,8 @@ void BM_BilinearMipNearestRGBA8(benchmark::State& state) {
   ss.magFilter = ss.minFilter = TextureFilter::Linear;
   ss.mipFilter = TextureFilter::Point;
   const PreparedSampler prepared(*tex, ss);
-  Coords c(1.3f, false);
-  float out[4][kBatchLanes];
-  int64_t samples = 0;
-  int b = 0;
-  for (auto _ : state) {
-    SampleRequest req;
-    req.u = &c.u[b * kBatchLanes];
-    req.v = &c.v[b * kBatchLanes];
-    prepared.sample(req, out);
-    benchmark::DoNotOptimize(out);
-    benchmark::ClobberMemory();
-    b = b + 1 == c.batches() ? 0 : b + 1;
-    samples += kBatchLanes;
-  }
-  state.SetItemsProcessed(samples);
+  runWith(state, 1.3f, false,
+          [&](const SampleRequest& req, float (*out)[kBatchLanes]) { prepared.sample(req, out); });
 }
 BENCHMARK(BM_BilinearMipNearestRGBA8);
 
