@@ -1108,34 +1108,36 @@ PreparedSampler::PreparedSampler(const Texture& tex, const SamplerState& state)
     plan_ = std::make_shared<const PreparedPlan>(tex, state, addr);
 }
 
-void PreparedSampler::sample(const SampleRequest& req, float out[4][kBatchLanes]) const {
-  if (const auto* p = static_cast<const PreparedPlan*>(plan_.get())) {
-    const float* c[3] = {req.u ? req.u : kZeros, req.v ? req.v : kZeros, req.w ? req.w : kZeros};
-    // The same choices as sampleImpl, in the same order.
-    if (p->single) {
-      p->single(*p->levels[0], c[0], c[1], out);
-      if (req.laneMask != 0xffff) clearLanes(out, req.laneMask);
-      return;
-    }
-    if (p->needLambda && req.lodMode == LodMode::Derivatives &&
-        p->st.mipFilter != TextureFilter::Linear && sample2DUniform(p->fast, c, req.laneMask, out))
-      return;
+namespace {
+
+// The prepared plan's fast paths, with sampleImpl's choices in the same order: true when
+// one of them sampled the request.
+[[gnu::always_inline]] inline bool samplePrepared(const PreparedPlan* p, const float* u,
+                                                  const float* v, const float* w,
+                                                  bool derivatives, uint16_t laneMask,
+                                                  float out[4][kBatchLanes]) {
+  if (!p) return false;
+  const float* c[3] = {u ? u : kZeros, v ? v : kZeros, w ? w : kZeros};
+  if (p->single) {
+    p->single(*p->levels[0], c[0], c[1], out);
+    if (laneMask != 0xffff) clearLanes(out, laneMask);
+    return true;
   }
-  sampleImpl(*tex_, state_, req, out, true);
+  return p->needLambda && derivatives && p->st.mipFilter != TextureFilter::Linear &&
+         sample2DUniform(p->fast, c, laneMask, out);
+}
+
+}  // namespace
+
+void PreparedSampler::sample(const SampleRequest& req, float out[4][kBatchLanes]) const {
+  if (!samplePrepared(static_cast<const PreparedPlan*>(plan_.get()), req.u, req.v, req.w,
+                      req.lodMode == LodMode::Derivatives, req.laneMask, out))
+    sampleImpl(*tex_, state_, req, out, true);
 }
 
 void PreparedSampler::sampleImplicit(const float* u, const float* v, const float* w,
                                      uint16_t laneMask, float out[4][kBatchLanes]) const {
-  const auto* p = static_cast<const PreparedPlan*>(plan_.get());
-  const float* c[3] = {u ? u : kZeros, v ? v : kZeros, w ? w : kZeros};
-  // The choices of sample() for a LodMode::Derivatives request, in the same order.
-  if (p && p->single) {
-    p->single(*p->levels[0], c[0], c[1], out);
-    if (laneMask != 0xffff) clearLanes(out, laneMask);
-    return;
-  }
-  if (p && p->needLambda && p->st.mipFilter != TextureFilter::Linear &&
-      sample2DUniform(p->fast, c, laneMask, out))
+  if (samplePrepared(static_cast<const PreparedPlan*>(plan_.get()), u, v, w, true, laneMask, out))
     return;
   SampleRequest req;
   req.u = u, req.v = v, req.w = w;
