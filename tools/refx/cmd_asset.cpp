@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "builtin_assets.h"
 #include "commands.h"
 #include "refx/core/diagnostics.h"
 #include "refx/d3dx/brdf.h"
@@ -255,6 +256,22 @@ int runAsset(const AssetOptions& o) {
 }
 
 }  // namespace
+
+TexturePtr builtinTexture(const std::string& name) {
+  // Each built-in texture is made once per process at its default size.
+  static std::vector<std::pair<std::string, TexturePtr>> made;
+  for (const auto& [n, t] : made)
+    if (n == name) return t;
+  for (const Asset& a : assets())
+    if (a.name == name && a.texture) return made.emplace_back(name, a.texture(a.defaultSize)).second;
+  return nullptr;
+}
+
+std::optional<d3dx::Mesh> builtinMesh(const std::string& name) {
+  for (const Asset& a : assets())
+    if (a.name == name && a.mesh) return a.mesh();
+  return std::nullopt;
+}
 
 Action addAssetCommand(CLI::App& app) {
   auto o = std::make_shared<AssetOptions>();

@@ -19,6 +19,7 @@ Action addAssetCommand(CLI::App& app);
 Action addDisasmCommand(CLI::App& app);
 Action addAsmCommand(CLI::App& app);
 Action addValidateCommand(CLI::App& app);
+Action addRenderCommand(CLI::App& app);
 
 // True when stderr is a terminal (progress display).
 bool stderrIsTerminal();
