@@ -117,6 +117,7 @@ struct Value {
   ParameterClass cls = ParameterClass::Vector;  // how shader-constant registers are laid out
   int rows = 1, columns = 0;                    // columns 0: packed four per register
   const Param* object = nullptr;                // texture / sampler / shader / string parameter
+  const Param* source = nullptr;                // the numeric parameter the value was read from
   bool isNull = false;
   std::string text;
   bool isString = false;
@@ -175,6 +176,7 @@ struct Effect::Impl {
     const int count = element < 0 ? scalarCount(d) : per;
     for (int i = 0; i < count; ++i) v.numbers.push_back(decodeScalar(d.type, p.store->raw[size_t(first + i)]));
     v.cls = d.cls == ParameterClass::Scalar ? ParameterClass::Vector : d.cls;
+    v.source = &p;
     v.rows = d.rows;
     v.columns = d.columns;
     return v;
@@ -408,6 +410,9 @@ struct Effect::Impl {
   const Param* objectParam(const BoundState& s, std::initializer_list<ParameterType> types, const char* what) const {
     const Value v = eval(s.value);
     if (v.isNull) return nullptr;
+    if (!v.object && v.source)
+      failAt(s.value.where, "'{}' takes a {} parameter; '{}' is a {}", s.name, what, v.source->decl.desc.name,
+             parameterTypeName(v.source->decl.desc.type));
     if (!v.object) failAt(s.value.where, "'{}' takes a {} parameter", s.name, what);
     const ParameterType t = v.object->decl.desc.type;
     const bool ok = std::find(types.begin(), types.end(), t) != types.end();
@@ -598,6 +603,9 @@ struct Effect::Impl {
              parsed.version.name());
     sh->tokens = shader::encode(parsed);
     static const shader::ValidationCaps kCaps = shaderValidationCaps(loadCapsProfile("ref"));
+    // The version's rules, reported at the instruction (the block's text keeps file positions).
+    for (const shader::Diagnostic& d : shader::validate(parsed, kCaps))
+      failAt(SourceLocation{e.assembly.file, d.pos.line, d.pos.column}, "{}: {}", what, d.message);
     try {
       if (vertex) sh->vs = std::make_shared<VertexShader>(sh->tokens, kCaps);
       else sh->ps = std::make_shared<PixelShader>(sh->tokens, kCaps);

@@ -276,7 +276,7 @@ Token Lexer::lex() {
   return t;
 }
 
-RawBlock Lexer::rawBlockAfterBrace(const SourceLocation& brace) {
+RawBlock Lexer::rawBlockAfterBrace(const SourceLocation& brace, bool semicolonComments) {
   if (hasPeeked_ || !pending_.empty())
     failAt(brace, "a block's text cannot come from a macro");
   RawBlock b;
@@ -309,7 +309,7 @@ RawBlock Lexer::rawBlockAfterBrace(const SourceLocation& brace) {
       advance();
       continue;
     }
-    if (c == ';') {  // an assembly comment: braces in it do not count
+    if (c == ';' && semicolonComments) {  // an assembly comment: braces in it do not count
       while (cur() != '\0' && cur() != '\n') {
         b.text += cur();
         advance();

@@ -41,8 +41,9 @@ class Lexer {
   const Token& peek();
   Token next();
   // After the parser consumed a '{' with next(): the text up to the matching '}',
-  // which is consumed. Comments and strings are skipped when matching braces.
-  RawBlock rawBlockAfterBrace(const SourceLocation& brace);
+  // which is consumed. Braces in comments do not count; `;` starts a comment in
+  // assembly (semicolonComments) but ends a statement in a decl block.
+  RawBlock rawBlockAfterBrace(const SourceLocation& brace, bool semicolonComments);
   const std::vector<std::string>& files() const { return files_; }
 
  private:

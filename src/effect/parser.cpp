@@ -415,7 +415,7 @@ class Parser {
     if (t.isIdent("decl")) {
       lex_.next();
       Token brace = expect("{", "after decl");
-      sh.decl = lex_.rawBlockAfterBrace(brace.where);
+      sh.decl = lex_.rawBlockAfterBrace(brace.where, false);
       Token a = lex_.next();
       if (!a.isIdent("asm")) failAt(a.where, "expected 'asm {{' after the decl block, found {}", describe(a));
     }
@@ -423,7 +423,7 @@ class Parser {
       if (!sh.decl) lex_.next();
       Token brace = expect("{", "after asm");
       sh.kind = ShaderExpr::Kind::Asm;
-      sh.assembly = lex_.rawBlockAfterBrace(brace.where);
+      sh.assembly = lex_.rawBlockAfterBrace(brace.where, true);
       return sh;
     }
     if (lex_.peek().isIdent("compile")) {

@@ -4,7 +4,9 @@
 // shader version and constant count apply too. Prints "FILE: valid (vs_1_1, N
 // instruction slots)" and exits 0, or every diagnostic as "FILE:line:col: error: …"
 // and exits 1.
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <memory>
@@ -13,6 +15,8 @@
 
 #include "commands.h"
 #include "refx/core/diagnostics.h"
+#include "refx/core/text.h"
+#include "refx/effect/effect.h"
 #include "refx/pipeline/caps.h"
 #include "refx/shader/assembler.h"
 #include "refx/shader/validator.h"
@@ -39,7 +43,43 @@ void printError(const std::string& file, const Error& e) {
   else std::fprintf(stderr, "%s: error: %s\n", file.c_str(), what.c_str());
 }
 
+// An effect: every technique against every profile (or --caps), as a table, then the
+// reason for each invalid pair. Exit 1 only when the file itself has errors.
+int runValidateEffect(const ValidateOptions& o) {
+  auto fx = effect::Effect::fromFile(o.input);
+  bool hadErrors = false;
+  for (const effect::EffectDiagnostic& d : fx->diagnostics()) {
+    std::fprintf(stderr, "%s\n", d.str().c_str());
+    hadErrors |= d.error;
+  }
+  std::vector<CapsProfile> profiles;
+  if (!o.caps.empty()) profiles.push_back(loadCapsProfile(o.caps));
+  else
+    for (const std::string& name : capsProfileNames()) profiles.push_back(loadCapsProfile(name));
+  size_t nameWidth = 9;
+  for (effect::Handle t = 0; t < fx->techniqueCount(); ++t)
+    nameWidth = std::max(nameWidth, fx->techniqueDesc(t).name.size());
+  std::printf("%-*s", int(nameWidth), "technique");
+  for (const CapsProfile& c : profiles) std::printf("  %s", c.name.c_str());
+  std::printf("\n");
+  std::vector<std::string> reasons;
+  for (effect::Handle t = 0; t < fx->techniqueCount(); ++t) {
+    const std::string& name = fx->techniqueDesc(t).name;
+    std::printf("%-*s", int(nameWidth), name.c_str());
+    for (const CapsProfile& c : profiles) {
+      const effect::TechniqueValidation v = fx->validateTechnique(t, c);
+      std::printf("  %-*s", int(c.name.size()), v.ok ? "valid" : "-");
+      if (!v.ok) reasons.push_back(fmt::format("{} on {}: {}", name, c.name, v.reason));
+    }
+    std::printf("\n");
+  }
+  for (const std::string& r : reasons) std::printf("  %s\n", r.c_str());
+  return hadErrors ? 1 : 0;
+}
+
 int runValidate(const ValidateOptions& o) {
+  const std::string ext = toLower(std::filesystem::path(o.input).extension().string());
+  if (ext == ".fx" || ext == ".fxh") return runValidateEffect(o);
   std::vector<uint8_t> bytes;
   {
     std::ifstream in(o.input, std::ios::binary);
@@ -88,8 +128,9 @@ int runValidate(const ValidateOptions& o) {
 Action addValidateCommand(CLI::App& app) {
   auto o = std::make_shared<ValidateOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "validate", "Check a shader (assembly text or .vso/.pso tokens) against its version's rules");
-  cmd->add_option("file", o->input, "Shader assembly text or binary token file")->required();
+      "validate", "Check a shader (assembly text or .vso/.pso tokens) against its version's rules, or "
+                  "an effect's techniques against every caps profile");
+  cmd->add_option("file", o->input, "Shader assembly text, binary token file, or effect (.fx)")->required();
   cmd->add_option("--caps", o->caps,
                   "Device caps profile (see `refx caps`): its shader version and constant count apply");
   return [o] { return runValidate(*o); };
