@@ -18,7 +18,13 @@ constexpr int kMaxExpansionDepth = 64;
 bool identStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
 bool identChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
+constexpr uintmax_t kMaxIncludeBytes = 16u << 20;
+
 std::optional<std::string> readFile(const std::string& path) {
+  // Only regular files of a sane size: `#include "/dev/zero"` must not hang.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) > kMaxIncludeBytes)
+    return std::nullopt;
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
   std::ostringstream s;
