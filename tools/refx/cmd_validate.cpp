@@ -66,10 +66,14 @@ int runValidateEffect(const ValidateOptions& o) {
   for (effect::Handle t = 0; t < fx->techniqueCount(); ++t) {
     const std::string& name = fx->techniqueDesc(t).name;
     std::printf("%-*s", int(nameWidth), name.c_str());
+    // A technique with an error in the file fails everywhere for that one reason.
+    if (!fx->techniqueDesc(t).brokenReason.empty())
+      reasons.push_back(fmt::format("{} on every profile: {}", name, fx->techniqueDesc(t).brokenReason));
     for (const CapsProfile& c : profiles) {
       const effect::TechniqueValidation v = fx->validateTechnique(t, c);
       std::printf("  %-*s", int(c.name.size()), v.ok ? "valid" : "-");
-      if (!v.ok) reasons.push_back(fmt::format("{} on {}: {}", name, c.name, v.reason));
+      if (!v.ok && fx->techniqueDesc(t).brokenReason.empty())
+        reasons.push_back(fmt::format("{} on {}: {}", name, c.name, v.reason));
     }
     std::printf("\n");
   }
