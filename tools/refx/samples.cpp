@@ -435,6 +435,8 @@ const std::vector<Sample>& allSamples() {
     std::vector<Sample> v = samples;
     const auto& shaders = shaderSamples();
     v.insert(v.end(), shaders.begin(), shaders.end());
+    const auto& effects = effectSamples();
+    v.insert(v.end(), effects.begin(), effects.end());
     return v;
   }();
   return all;
