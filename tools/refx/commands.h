@@ -20,6 +20,7 @@ Action addDisasmCommand(CLI::App& app);
 Action addAsmCommand(CLI::App& app);
 Action addValidateCommand(CLI::App& app);
 Action addRenderCommand(CLI::App& app);
+Action addWatchCommand(CLI::App& app);
 
 // True when stderr is a terminal (progress display).
 bool stderrIsTerminal();
