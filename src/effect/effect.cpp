@@ -1039,6 +1039,49 @@ Handle Effect::findNextValidTechnique(Handle after, const CapsProfile& caps) con
   return -1;
 }
 
+TechniqueSelection Effect::selectTechnique(const CapsProfile& caps, const SelectionPolicy& policy) const {
+  std::vector<Handle> order;
+  for (const std::string& name : policy.preferred) {
+    const Handle t = techniqueByName(name);
+    if (t < 0) fail("{}: no technique named '{}' to prefer", impl_->fileName, name);
+    if (std::find(order.begin(), order.end(), t) == order.end()) order.push_back(t);
+  }
+  for (Handle t = 0; t < techniqueCount(); ++t)
+    if (std::find(order.begin(), order.end(), t) == order.end()) order.push_back(t);
+  TechniqueSelection sel;
+  for (Handle t : order) {
+    const TechniqueDesc& d = techniqueDesc(t);
+    auto number = [&](std::string_view key) -> std::optional<double> {
+      const Annotation* a = annotationByName(d.annotations, key);
+      if (!a || a->numbers.empty()) return std::nullopt;
+      return a->numbers[0];
+    };
+    if (policy.maxCost) {
+      if (auto cost = number("Cost"); cost && *cost > *policy.maxCost) {
+        sel.rejected.push_back(fmt::format("{}: Cost {} is above {}", d.name, *cost, *policy.maxCost));
+        continue;
+      }
+    }
+    if (policy.distance) {
+      const double dist = *policy.distance;
+      const auto lo = number("MinDistance"), hi = number("MaxDistance");
+      if ((lo && dist < *lo) || (hi && dist >= *hi)) {
+        sel.rejected.push_back(fmt::format("{}: camera distance {} is outside [{}, {})", d.name, dist,
+                                           lo ? fmt::format("{}", *lo) : "0", hi ? fmt::format("{}", *hi) : "inf"));
+        continue;
+      }
+    }
+    const TechniqueValidation v = validateTechnique(t, caps);
+    if (!v.ok) {
+      sel.rejected.push_back(fmt::format("{}: {}", d.name, v.reason));
+      continue;
+    }
+    sel.technique = t;
+    return sel;
+  }
+  return sel;
+}
+
 void Effect::setTechnique(Handle t) {
   if (t < 0 || t >= techniqueCount()) fail("effect technique handle {} is out of range", t);
   impl_->current = t;

@@ -446,3 +446,42 @@ TEST(EffectProbe, AsmShadersWithAnExpressionConstant) {
 }
 
 }  // namespace
+
+namespace {
+
+// Selection beyond caps: cost, camera distance and the user's preference combined
+// with validation, as the white paper describes.
+constexpr const char* kPolicyEffect = R"(
+technique detailed < float Cost = 3; float MaxDistance = 10; > { pass p { PixelShader = asm { ps.1.4  mov r0, c0 }; } }
+technique cheap < float Cost = 1; > { pass p { ColorOp[0] = SelectArg1; ColorArg1[0] = Diffuse; } }
+technique far < float Cost = 0.5; float MinDistance = 20; > { pass p { ColorOp[0] = SelectArg1; ColorArg1[0] = TFactor; } }
+)";
+
+TEST(EffectSelection, CostDistanceAndPreferenceWithValidation) {
+  auto fx = Effect::fromText(kPolicyEffect, "policy.fx");
+  const CapsProfile ref = loadCapsProfile("ref"), dx8 = loadCapsProfile("dx8");
+  EXPECT_EQ(fx->selectTechnique(ref).technique, 0);  // caps only: the first valid one
+  // dx8 has no ps.1.4: "detailed" fails validation and "cheap" runs.
+  TechniqueSelection s = fx->selectTechnique(dx8);
+  EXPECT_EQ(s.technique, 1);
+  ASSERT_EQ(s.rejected.size(), 1u);
+  EXPECT_EQ(s.rejected[0], "detailed: pass p: pixel shader ps_1_4 needs PixelShaderVersion 1.4; dx8 has 1.1");
+  SelectionPolicy budget;
+  budget.maxCost = 2;  // Cost 3 is too expensive
+  s = fx->selectTechnique(ref, budget);
+  EXPECT_EQ(s.technique, 1);
+  EXPECT_EQ(s.rejected.at(0), "detailed: Cost 3 is above 2");
+  SelectionPolicy farAway;
+  farAway.distance = 25;  // beyond MaxDistance 10 of "detailed"; "cheap" has no range
+  EXPECT_EQ(fx->selectTechnique(ref, farAway).technique, 1);
+  farAway.preferred = {"far"};  // the user's choice is tried first and applies from 20 on
+  EXPECT_EQ(fx->selectTechnique(ref, farAway).technique, 2);
+  farAway.distance = 5;  // too close for "far": its rejection is reported, "detailed" runs
+  s = fx->selectTechnique(ref, farAway);
+  EXPECT_EQ(s.technique, 0);
+  EXPECT_EQ(s.rejected.at(0), "far: camera distance 5 is outside [20, inf)");
+  farAway.preferred = {"missing"};
+  EXPECT_THROW(fx->selectTechnique(ref, farAway), Error);
+}
+
+}  // namespace

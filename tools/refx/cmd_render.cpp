@@ -5,6 +5,7 @@
 // exit status is 1 when the file had errors.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -23,6 +24,8 @@ struct RenderOptions {
   std::string precision = "exact", outDir;
   std::vector<std::string> sets, textures, vsConsts, psConsts;
   float time = 0;
+  std::vector<std::string> prefer;
+  std::optional<float> maxCost, distance;
   int frames = 0;
   int threads = 0;
   bool autoTechnique = false;
@@ -82,7 +85,11 @@ int runRender(const RenderOptions& o) {
   for (const std::string& warning : scene.prepare(*fx))
     std::fprintf(stderr, "%s: warning: %s\n", o.input.c_str(), warning.c_str());
 
-  const TechniqueChoice choice = chooseTechnique(*fx, caps, o.technique);
+  effect::SelectionPolicy policy;
+  policy.preferred = o.prefer;
+  policy.maxCost = o.maxCost;
+  policy.distance = o.distance;
+  const TechniqueChoice choice = chooseTechnique(*fx, caps, o.technique, policy);
   for (const std::string& r : choice.rejected)
     std::printf("rejected on %s: %s\n", caps.name.c_str(), r.c_str());
   if (choice.technique < 0) {
@@ -132,6 +139,10 @@ Action addRenderCommand(CLI::App& app) {
   cmd->add_option("file", o->input, "effect file (.fx)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->output, "PNG to write (default render.png)");
   cmd->add_option("--technique", o->technique, "technique name (default: the first valid one)");
+  cmd->add_option("--prefer", o->prefer, "techniques to try first, in order (user preference)");
+  cmd->add_option("--max-cost", o->maxCost, "skip techniques whose `float Cost` annotation is above this");
+  cmd->add_option("--distance", o->distance,
+                  "camera distance for level of detail: skip techniques whose MinDistance/MaxDistance exclude it");
   cmd->add_flag("--auto", o->autoTechnique, "choose the first technique valid on --caps (the default)");
   cmd->add_option("--caps", o->caps, "device generation: a caps profile name or file (default ref)");
   cmd->add_option("--mesh", o->mesh, "sphere, teapot, torus, box, a built-in mesh, or a .x/.obj file");

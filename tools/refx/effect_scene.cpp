@@ -75,7 +75,8 @@ void writeFloat(uint8_t* p, float f) { std::memcpy(p, &f, 4); }
 
 }  // namespace
 
-TechniqueChoice chooseTechnique(const Effect& fx, const CapsProfile& caps, const std::string& name) {
+TechniqueChoice chooseTechnique(const Effect& fx, const CapsProfile& caps, const std::string& name,
+                                const effect::SelectionPolicy& policy) {
   TechniqueChoice c;
   if (!name.empty()) {
     c.technique = fx.techniqueByName(name);
@@ -89,14 +90,9 @@ TechniqueChoice chooseTechnique(const Effect& fx, const CapsProfile& caps, const
     if (!v.ok) c.rejected.push_back(fmt::format("{}: {}", name, v.reason));
     return c;
   }
-  for (Handle t = 0; t < fx.techniqueCount(); ++t) {
-    const auto v = fx.validateTechnique(t, caps);
-    if (v.ok) {
-      c.technique = t;
-      return c;
-    }
-    c.rejected.push_back(fmt::format("{}: {}", fx.techniqueDesc(t).name, v.reason));
-  }
+  const effect::TechniqueSelection sel = fx.selectTechnique(caps, policy);
+  c.technique = sel.technique;
+  c.rejected = sel.rejected;
   return c;
 }
 

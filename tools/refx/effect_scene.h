@@ -33,7 +33,8 @@ struct TechniqueChoice {
 // The first technique (in file order, best first) valid on `caps`; or the named one,
 // which must exist (refx::Error otherwise) and is used even when invalid, with the
 // reason in `rejected`.
-TechniqueChoice chooseTechnique(const effect::Effect& fx, const CapsProfile& caps, const std::string& name);
+TechniqueChoice chooseTechnique(const effect::Effect& fx, const CapsProfile& caps, const std::string& name,
+                                const effect::SelectionPolicy& policy = {});
 
 // Meshes, textures and parameter values of one effect file; keeps meshes and
 // textures across reloads of the same file.

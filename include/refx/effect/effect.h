@@ -31,6 +31,7 @@ std::string_view parameterTypeName(ParameterType type);  // "float", "texture2D"
 constexpr uint32_t kParameterShared = 1;
 
 struct Annotation;
+using Handle = int;  // index; -1 = none (a null D3DXHANDLE)
 
 // D3DXPARAMETER_DESC plus the annotations.
 struct ParameterDesc {
@@ -81,6 +82,23 @@ struct TechniqueValidation {
   std::string reason;  // "pass p0: pixel shader ps_1_4 needs PixelShaderVersion 1.4; dx8 has 1.1"
 };
 
+// Choosing a technique on more than caps (the white paper: "performance, distance
+// from the camera, user preferences … sometimes combined"). Techniques say what they
+// cost and where they apply with annotations:
+//   float Cost;         relative cost (any unit the effect's author uses)
+//   float MinDistance;  used from this camera distance on (default 0)
+//   float MaxDistance;  used below this camera distance (default unlimited)
+struct SelectionPolicy {
+  std::vector<std::string> preferred;  // technique names tried first, in this order
+  std::optional<float> maxCost;        // skip techniques whose Cost is above
+  std::optional<float> distance;       // skip techniques whose [MinDistance, MaxDistance) excludes it
+};
+
+struct TechniqueSelection {
+  Handle technique = -1;
+  std::vector<std::string> rejected;  // "name: reason" for each technique tried before
+};
+
 // D3DXFX_* Begin flags.
 constexpr uint32_t kDoNotSaveState = 1, kDoNotSaveShaderState = 2, kDoNotSaveSamplerState = 4;
 
@@ -102,7 +120,6 @@ struct EffectOptions {
   std::shared_ptr<EffectPool> pool;
 };
 
-using Handle = int;  // index; -1 = none (a null D3DXHANDLE)
 
 class Effect {
  public:
@@ -162,6 +179,10 @@ class Effect {
   TechniqueValidation validateTechnique(Handle t, const CapsProfile& caps) const;
   // The first valid technique after `after` (-1: from the first); -1 when none.
   Handle findNextValidTechnique(Handle after, const CapsProfile& caps) const;
+
+  // The first technique that validates on `caps` and passes the policy: preferred
+  // names first, then the rest in file order (best first).
+  TechniqueSelection selectTechnique(const CapsProfile& caps, const SelectionPolicy& policy = {}) const;
 
   void setTechnique(Handle t);
   Handle currentTechnique() const;
