@@ -5,8 +5,8 @@
 // c8-c11 world*view*projection (transposed), c12 light direction, c24 eye, c33 = 0.5.
 // Stage 0 color map, stage 1 normal map. The ps.1.4 shader reads the specular power from
 // the normal map's alpha ("the values of this map are stored in the alpha values of the
-// normal map"): earth-normal-spec16.png is the built-in earth-normal with alpha =
-// pow((y + 0.5) / 256, 16), RacorX8's LightEval table, one mip level (see README.md).
+// normal map"): the built-in earth-normal-specular is earth-normal with alpha =
+// pow((y + 0.5) / height, 16), RacorX8's LightEval table.
 // Techniques: the ps.1.4 table shader, the text's "equivalent to the ps.1.1 shader" in
 // ps.1.4 (never chosen before PS11 by a ps.1.4 part; pick it with --technique), ps.1.1.
 
@@ -18,7 +18,7 @@ vector vHalf = {0.5, 0.5, 0.5, 0.5};
 
 texture ColorMap          < string ResourceName = "earth-color"; >;
 texture NormalMap         < string ResourceName = "earth-normal"; >;
-texture NormalMapSpecular < string ResourceName = "earth-normal-spec16.png"; >;
+texture NormalMapSpecular < string ResourceName = "earth-normal-specular"; >;
 
 // SpecDot3Pix.vsh: light vector in oD0, half vector in oD1 (ps.1.1 and the mul version).
 vertexshader vsSpecDot3Pix =

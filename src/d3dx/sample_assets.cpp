@@ -295,6 +295,22 @@ TexturePtr earthNormalMap(int w, int h, int levels) {
   return out;
 }
 
+TexturePtr earthNormalMapSpecularAlpha(int w, int h, float power, int levels) {
+  TexturePtr normal = earthNormalMap(w, h, 1);
+  TexturePtr out = Texture::create2D(Format::A8R8G8B8, w, h, levels);
+  for (int y = 0; y < h; ++y) {
+    const float a = std::pow((float(y) + 0.5f) / float(h), power);
+    for (int x = 0; x < w; ++x) {
+      Color4 c = normal->texel(0, 0, x, y);
+      c.a = a;
+      out->setTexel(0, 0, x, y, 0, c);
+    }
+  }
+  out->generateMips();
+  out->markDirty();
+  return out;
+}
+
 TexturePtr cloudMap(int w, int h, int levels) {
   requireSize("cloudMap", w, h);
   SphereGrid grid(w, h);

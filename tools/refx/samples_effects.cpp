@@ -62,6 +62,19 @@ const std::vector<EffectSample>& effectList() {
     v.push_back(brdf);
     v.push_back({"brdf_fixed.fx", "fx-brdf-fixed", "BRDF effect with oT1.z and the eye position set by the effect",
                  "seeds/000 BRDF effect file, corrected", {}});
+    v.push_back({"racorx6.fx", "fx-racorx6", "RacorX6 as an effect: ps.1.4, then ps.1.1",
+                 "seeds/003 Programming Pixel Shaders, RacorX6", {}});
+    v.push_back({"racorx7.fx", "fx-racorx7", "RacorX7 as an effect: N.H^16 by multiplies, ps.1.4 then ps.1.1",
+                 "seeds/003, RacorX7", {}});
+    v.push_back({"racorx8.fx", "fx-racorx8", "RacorX8 as an effect: specular table lookup, ps.1.4 then ps.1.1",
+                 "seeds/003, RacorX8", {}});
+    v.push_back({"racorx9.fx", "fx-racorx9", "RacorX9 as an effect: diffuse + specular, ps.1.4 then ps.1.1",
+                 "seeds/003, RacorX9", {}});
+    v.push_back({"paper_diffuse.fx", "fx-paper-diffuse",
+                 "Per-pixel diffuse as an effect: ps.1.1, DOT3 (DirectX 7), emboss (DirectX 6)",
+                 "seeds/000 per-pixel lighting column and its fallbacks", {}});
+    v.push_back({"bump_earth.fx", "fx-bump-earth", "Bump-environment-mapped earth as an effect, with a fallback",
+                 "seeds/000 \"DirectX 6 Multi-Texture\" listing", {}});
     return v;
   }();
   return list;

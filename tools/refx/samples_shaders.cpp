@@ -35,23 +35,6 @@ const Vec3 kTowardLight = normalize(Vec3{-0.6f, 0.5f, -0.7f});
 // The globe's orientation: the same view of the earth as the fixed-function samples.
 Matrix globeWorld() { return matrixRotationY(2.2f) * matrixRotationX(0.35f); }
 
-// RacorX9's ps.1.4 normal map: the normal map with RacorX8's LightEval table
-// (RGB = pow(v, 16)) copied into its alpha, texel by texel, as RestoreDeviceObjects does.
-TexturePtr normalMapWithSpecularAlpha(const Texture& normal) {
-  auto t = Texture::create2D(Format::A8R8G8B8, normal.width(), normal.height(), 0);
-  for (int y = 0; y < normal.height(); ++y) {
-    const float v = (y + 0.5f) / float(normal.height());
-    const float power = std::pow(v, 16.0f);
-    for (int x = 0; x < normal.width(); ++x) {
-      Color4 c = normal.texel(0, 0, x, y);
-      c.a = power;
-      t->setTexel(0, 0, x, y, 0, c);
-    }
-  }
-  t->generateMips();
-  return t;
-}
-
 // RacorX10's illumination map (diffspec.dds), indexed by u = N.L and v = N.H:
 // RGB = the diffuse value u, A = the specular value v^16.
 TexturePtr illuminationMap(int size) {
@@ -64,7 +47,7 @@ struct Assets {
   TexturePtr color = d3dx::earthColorMap(512, 256, 0);   // alpha = gloss (water)
   TexturePtr height = d3dx::earthHeightMap(512, 256, 0);
   TexturePtr normal = d3dx::earthNormalMap(512, 256, 0);
-  TexturePtr normalSpecular = normalMapWithSpecularAlpha(*normal);
+  TexturePtr normalSpecular = d3dx::earthNormalMapSpecularAlpha(normal->width(), normal->height(), 16.0f, 0);
   TexturePtr table16 = racorx8Table();                                       // RacorX8
   TexturePtr table100 = d3dx::specularPowerMap(256, 256, 100, d3dx::SpecularAlpha::U);  // the column's
   TexturePtr table2048 = d3dx::specularPowerTable(2048, 16, 1);              // RacorX12

@@ -62,6 +62,9 @@ TexturePtr earthBumpMapLuminance(int width, int height, int levels = 1);
 // A8R8G8B8 normal map: computeNormalMap of the height map (amplitude 10, mirrored
 // at the poles, wrapped in u).
 TexturePtr earthNormalMap(int width, int height, int levels = 1);
+// earthNormalMap with a specular power table in alpha: A = v^power at texel row v
+// (RacorX9's ps.1.4 reads the power from the normal map's alpha).
+TexturePtr earthNormalMapSpecularAlpha(int width, int height, float power, int levels = 1);
 // A8R8G8B8 white clouds over the same sphere; alpha = cloud cover.
 TexturePtr cloudMap(int width, int height, int levels = 1);
 
