@@ -485,3 +485,102 @@ TEST(EffectSelection, CostDistanceAndPreferenceWithValidation) {
 }
 
 }  // namespace
+
+namespace {
+
+// The technique each seed effect runs on each device generation, from the articles:
+// the RacorX samples take ps.1.4 where PixelShaderVersion >= 1.4, else ps.1.1, and
+// nothing without pixel shaders (their ConfirmDevice); per-pixel diffuse falls back
+// from ps.1.1 to DOTPRODUCT3 (DirectX 7) to emboss (DirectX 6); the bump earth needs
+// BUMPENVMAP (the G400 and every shader part) and otherwise draws without bumps; the
+// BRDF effect needs vs.1.1 and ps.1.1.
+struct Expected {
+  const char* file;
+  // ref, dx9-sm3, dx9, dx81, dx8-ps13, dx8, dx7, dx6-g400, dx6-tnt2 ("" = none valid)
+  const char* techniques[9];
+};
+
+constexpr const char* kProfiles[9] = {"ref", "dx9-sm3", "dx9", "dx81", "dx8-ps13", "dx8", "dx7", "dx6-g400", "dx6-tnt2"};
+
+constexpr Expected kSeedEffects[] = {
+    {"brdf.fx", {"tec0", "tec0", "tec0", "tec0", "tec0", "tec0", "", "", ""}},
+    {"brdf_fixed.fx", {"tec0", "tec0", "tec0", "tec0", "tec0", "tec0", "", "", ""}},
+    {"racorx6.fx", {"PS14", "PS14", "PS14", "PS14", "PS11", "PS11", "", "", ""}},
+    {"racorx7.fx", {"PS14", "PS14", "PS14", "PS14", "PS11", "PS11", "", "", ""}},
+    {"racorx8.fx", {"PS14", "PS14", "PS14", "PS14", "PS11", "PS11", "", "", ""}},
+    {"racorx9.fx", {"PS14", "PS14", "PS14", "PS14", "PS11", "PS11", "", "", ""}},
+    {"paper_diffuse.fx", {"PS11", "PS11", "PS11", "PS11", "PS11", "PS11", "DOT3", "Emboss", "Emboss"}},
+    {"bump_earth.fx", {"BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "NoBump",
+                       "BumpEnvMap", "NoBump"}},
+};
+
+class SeedEffectChoice : public ::testing::TestWithParam<Expected> {};
+
+TEST_P(SeedEffectChoice, PicksTheDocumentedTechniqueOnEveryProfile) {
+  const Expected& e = GetParam();
+  auto fx = Effect::fromFile(kDataDir + "/effects/" + e.file);
+  for (const auto& d : fx->diagnostics()) ADD_FAILURE() << d.str();
+  for (int i = 0; i < 9; ++i) {
+    const TechniqueSelection s = fx->selectTechnique(loadCapsProfile(kProfiles[i]));
+    const std::string got = s.technique < 0 ? "" : fx->techniqueDesc(s.technique).name;
+    EXPECT_EQ(got, e.techniques[i]) << e.file << " on " << kProfiles[i];
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Effects, SeedEffectChoice, ::testing::ValuesIn(kSeedEffects),
+                         [](const ::testing::TestParamInfo<Expected>& info) {
+                           std::string n = info.param.file;
+                           n = n.substr(0, n.find('.'));
+                           return n;
+                         });
+
+}  // namespace
+
+namespace {
+
+// Probe: racorx6.fx on a flat quad facing the camera. Tangent (1,0,0), normal (0,0,-1),
+// light travelling along d = (0,-0.6,0.8), so -c12 = (0,0.6,-0.8) and the vertex shader's
+// tangent-space light is (U.-c12, V.-c12, W.-c12) with V = cross = (0,-1,0):
+// (0, -0.6, 0.8), written to oD0 as 0.5*L + 0.5. The normal map is the flat texel
+// (128,128,255): t1_bx2 = (2*128/255 - 1, same, 1) = (0.0039216, 0.0039216, 1), so
+// N.L = -0.6*0.0039216 + 0.8 = 0.7976471, and the colour map (102,153,204) times N.L is
+// (81.36, 122.04, 162.72) → (81, 122, 163).
+TEST(EffectProbe, RacorX6DiffuseOnAFlatQuad) {
+  for (const char* technique : {"PS14", "PS11"}) {
+    SCOPED_TRACE(technique);
+    auto fx = Effect::fromFile(kDataDir + "/effects/racorx6.fx");
+    fx->setTechnique(fx->techniqueByName(technique));
+    fx->setMatrix(fx->parameterByName("mWorld"), Matrix::identity());
+    fx->setMatrix(fx->parameterByName("mWVP"), Matrix::identity());
+    fx->setVector(fx->parameterByName("vLightDir"), Vec4(0, -0.6f, 0.8f, 0));
+    auto texel = [](uint32_t argb) {
+      auto t = Texture::create2D(Format::A8R8G8B8, 1, 1, 1);
+      std::memcpy(t->data(0, 0), &argb, 4);
+      t->markDirty();
+      return t;
+    };
+    fx->setTexture(fx->parameterByName("ColorMap"), texel(0xff6699cc));
+    fx->setTexture(fx->parameterByName("NormalMap"), texel(0xff8080ff));
+    auto dev = test::makeDevice(8, 8);
+    // XYZ | NORMAL | TEX2 with set 1 three floats (the tangent): 44 bytes a vertex.
+    struct V {
+      float x, y, z, nx, ny, nz, u, v, tx, ty, tz;
+    };
+    const V quad[4] = {{-1, 1, 0.5f, 0, 0, -1, 0, 0, 1, 0, 0},
+                       {1, 1, 0.5f, 0, 0, -1, 1, 0, 1, 0, 0},
+                       {-1, -1, 0.5f, 0, 0, -1, 0, 1, 1, 0, 0},
+                       {1, -1, 0.5f, 0, 0, -1, 1, 1, 1, 0, 0}};
+    dev->setFVF(FVF_XYZ | FVF_NORMAL | (2u << FVF_TEXCOUNT_SHIFT) | fvfTexCoordSize(3, 1));
+    ASSERT_EQ(fx->begin(*dev, 0), 1);
+    fx->beginPass(0);
+    dev->drawPrimitiveUP(PT_TRIANGLESTRIP, 2, quad, sizeof(V));
+    fx->endPass();
+    fx->end();
+    const uint32_t p = test::pixel(*dev, 4, 4);
+    EXPECT_NEAR(int((p >> 16) & 0xff), 81, 1);
+    EXPECT_NEAR(int((p >> 8) & 0xff), 122, 1);
+    EXPECT_NEAR(int(p & 0xff), 163, 1);
+  }
+}
+
+}  // namespace
