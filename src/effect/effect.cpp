@@ -93,12 +93,23 @@ struct Technique {
   std::vector<Pass> passes;
 };
 
+// Numbers are doubles while evaluated; these convert as a C cast would for values in
+// range, and saturate (NaN: 0) instead of being undefined outside it.
+int64_t toInteger(double x) {
+  if (!(x == x)) return 0;
+  if (x >= 9.2e18) return INT64_MAX;
+  if (x <= -9.2e18) return INT64_MIN;
+  return int64_t(x);
+}
+uint32_t toDword(double x) { return uint32_t(toInteger(x)); }
+int toInt(double x) { return int(std::clamp<int64_t>(toInteger(x), INT32_MIN, INT32_MAX)); }
+
 int scalarCount(const ParameterDesc& d) { return d.isNumeric() ? d.valueCount() : 0; }
 
 uint32_t encodeScalar(ParameterType type, double v) {
   switch (type) {
     case ParameterType::Bool: return v != 0 ? 1u : 0u;
-    case ParameterType::Int: return uint32_t(int64_t(v));
+    case ParameterType::Int: return toDword(v);
     default: return floatBits(float(v));
   }
 }
@@ -235,7 +246,7 @@ struct Effect::Impl {
         for (double& x : v.numbers) {
           if (e.text == "-") x = -x;
           else if (e.text == "!") x = x == 0 ? 1 : 0;
-          else x = double(~uint32_t(int64_t(x)));
+          else x = double(~toDword(x));
         }
         return v;
       }
@@ -248,7 +259,7 @@ struct Effect::Impl {
         for (size_t i = 0; i < r.numbers.size(); ++i) {
           const double x = a.numbers[a.numbers.size() == 1 ? 0 : i];
           const double y = b.numbers[b.numbers.size() == 1 ? 0 : i];
-          const uint32_t xi = uint32_t(int64_t(x)), yi = uint32_t(int64_t(y));
+          const uint32_t xi = toDword(x), yi = toDword(y);
           const std::string& op = e.text;
           double z = 0;
           if (op == "+") z = x + y;
@@ -277,7 +288,7 @@ struct Effect::Impl {
         const Expr& base = e.args[0];
         const Value idx = numeric(e.args[1]);
         if (idx.numbers.size() != 1) failAt(e.args[1].where, "an index must be a scalar");
-        const int i = int(idx.numbers[0]);
+        const int i = toInt(idx.numbers[0]);
         if (base.kind == Expr::Kind::Name) {
           if (const Param* p = findParam(base.text); p && p->decl.desc.elements > 0) {
             if (i < 0 || i >= p->decl.desc.elements)
@@ -356,8 +367,8 @@ struct Effect::Impl {
       case d3d::ValueKind::Float: return floatBits(float(v.numbers[0]));
       case d3d::ValueKind::Color:
         if (v.numbers.size() >= 3) return packColor(v.numbers);
-        return uint32_t(int64_t(v.numbers[0]));
-      default: return uint32_t(int64_t(v.numbers[0]));
+        return toDword(v.numbers[0]);
+      default: return toDword(v.numbers[0]);
     }
   }
 
@@ -370,8 +381,8 @@ struct Effect::Impl {
       // D3DX's keyword lists are per state; the enum tables cover them.
       return std::nullopt;
     }
-    if (e.kind == Expr::Kind::Number && e.isInt) return uint32_t(int64_t(e.number));
-    if (e.kind == Expr::Kind::Bool) return uint32_t(e.number);
+    if (e.kind == Expr::Kind::Number && e.isInt) return toDword(e.number);
+    if (e.kind == Expr::Kind::Bool) return toDword(e.number);
     if (e.kind == Expr::Kind::Binary && e.text == "|") {
       auto a = keyword(e.args[0], kind);
       auto b = keyword(e.args[1], kind);
@@ -556,7 +567,7 @@ struct Effect::Impl {
       case StateTarget::PixelConstI: {
         const Value v = numeric(s.value);
         std::vector<int> data;
-        for (double x : v.numbers) data.push_back(int(x));
+        for (double x : v.numbers) data.push_back(toInt(x));
         while (data.size() % 4) data.push_back(0);
         const uint32_t count = uint32_t(data.size() / 4);
         if (i + int(count) > kMaxShaderConstI) failAt(s.where, "'{}[{}]' writes past i15", s.name, i);
@@ -971,7 +982,7 @@ bool Effect::getBool(Handle p) const { return getFloatArray(p).at(0) != 0; }
 int Effect::getInt(Handle p) const {
   const Param& q = impl_->param(p);
   requireNumeric(q.decl.desc);
-  return int(decodeScalar(q.decl.desc.type, q.store->raw.at(0)));
+  return toInt(decodeScalar(q.decl.desc.type, q.store->raw.at(0)));
 }
 float Effect::getFloat(Handle p) const { return getFloatArray(p).at(0); }
 Vec4 Effect::getVector(Handle p) const {
