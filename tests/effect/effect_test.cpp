@@ -584,3 +584,23 @@ TEST(EffectProbe, RacorX6DiffuseOnAFlatQuad) {
 }
 
 }  // namespace
+
+namespace {
+
+// Numbers outside the integer range saturate (a C cast would be undefined there):
+// 1e30 → INT64_MAX → DWORD 0xffffffff; -1e30 → INT64_MIN → DWORD 0.
+TEST(EffectState, OutOfRangeNumbersSaturate) {
+  auto fx = Effect::fromText("int big = 1e30;\n"
+                             "technique t { pass p { AlphaRef = 1e30; StencilRef = -1e30; StencilMask = ~1e30; } }",
+                             "range.fx");
+  ASSERT_TRUE(fx->diagnostics().empty()) << fx->diagnostics()[0].str();
+  EXPECT_EQ(fx->getInt(fx->parameterByName("big")), -1);  // DWORD 0xffffffff read as an int
+  auto dev = test::makeDevice(4, 4);
+  fx->begin(*dev, kDoNotSaveState);
+  fx->beginPass(0);
+  EXPECT_EQ(dev->getRenderState(RS_ALPHAREF), 0xffffffffu);
+  EXPECT_EQ(dev->getRenderState(RS_STENCILREF), 0u);
+  EXPECT_EQ(dev->getRenderState(RS_STENCILMASK), 0u);  // ~0xffffffff
+}
+
+}  // namespace
