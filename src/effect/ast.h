@@ -86,6 +86,10 @@ struct EffectAst {
   std::vector<std::string> files;      // the effect and its includes
 };
 
+// A numeric type name ("float4x3", "int2", "DWORD"): its class, scalar type and
+// dimensions (matrices as MatrixColumns); nullopt for any other word.
+std::optional<ParameterDesc> numericTypeName(std::string_view name);
+
 // Throws refx::Error on a syntax error.
 EffectAst parseEffect(std::string_view text, const std::string& fileName, const EffectOptions& options);
 

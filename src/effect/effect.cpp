@@ -329,27 +329,12 @@ struct Effect::Impl {
   }
 
   static bool constructorShape(const std::string& name, ParameterDesc& shape) {
-    // float, float4, float4x4, int2, bool3, half4 …
-    static constexpr std::string_view kBases[] = {"float", "int", "bool", "half", "double", "uint", "dword"};
-    for (std::string_view b : kBases) {
-      if (!startsWithNoCase(name, b)) continue;
-      std::string_view rest = std::string_view(name).substr(b.size());
-      shape = {};
-      if (rest.empty()) return true;
-      auto dim = [](char c) { return c >= '1' && c <= '4' ? c - '0' : 0; };
-      if (rest.size() == 1 && dim(rest[0])) {
-        shape.cls = ParameterClass::Vector;
-        shape.columns = dim(rest[0]);
-        return true;
-      }
-      if (rest.size() == 3 && dim(rest[0]) && rest[1] == 'x' && dim(rest[2])) {
-        shape.cls = ParameterClass::MatrixRows;  // a constructor lists values row by row
-        shape.rows = dim(rest[0]);
-        shape.columns = dim(rest[2]);
-        return true;
-      }
-    }
-    return false;
+    const auto t = numericTypeName(name);
+    if (!t) return false;
+    shape = *t;
+    // A constructor lists a matrix's values row by row.
+    if (shape.cls == ParameterClass::MatrixColumns) shape.cls = ParameterClass::MatrixRows;
+    return true;
   }
 
   // A state value as the DWORD SetRenderState / SetTextureStageState / SetSamplerState take.

@@ -15,12 +15,10 @@ namespace {
 
 constexpr int kMaxExprDepth = 128;
 
-struct TypeSpec {
-  ParameterDesc desc;
-};
+}  // namespace
 
 // "float4x3" → Float, 4, 3; "int2" → Int, 1, 2; "float" → Float, 1, 1.
-std::optional<ParameterDesc> numericType(std::string_view name) {
+std::optional<ParameterDesc> numericTypeName(std::string_view name) {
   struct Base {
     std::string_view name;
     ParameterType type;
@@ -53,6 +51,8 @@ std::optional<ParameterDesc> numericType(std::string_view name) {
   }
   return std::nullopt;
 }
+
+namespace {
 
 std::optional<ParameterType> objectType(std::string_view name) {
   struct Obj {
@@ -189,7 +189,7 @@ class Parser {
       d.columns = 4;
       if (accept("<")) {  // vector<float, 3>, matrix<float, 4, 4>
         Token base = expectIdent("a scalar type in vector<…>/matrix<…>");
-        auto scalar = numericType(base.text);
+        auto scalar = numericTypeName(base.text);
         if (!scalar || scalar->cls != ParameterClass::Scalar)
           failAt(base.where, "expected a scalar type (float, int, bool, half), found '{}'", base.text);
         d.type = scalar->type;
@@ -202,7 +202,7 @@ class Parser {
       (void)kw;
       return d;
     }
-    if (auto d = numericType(t.text)) {
+    if (auto d = numericTypeName(t.text)) {
       lex_.next();
       return d;
     }

@@ -37,11 +37,6 @@ std::string htmlEscape(const std::string& s) {
   return r;
 }
 
-void parseSize(const std::string& s, int& w, int& h) {
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192)
-    fail("--size: expected WxH with 1 <= W,H <= 8192, got '{}'", s);
-}
-
 int runGallery(const GalleryOptions& o) {
   int w = 0, h = 0;
   parseSize(o.size, w, h);

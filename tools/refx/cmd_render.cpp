@@ -31,11 +31,6 @@ struct RenderOptions {
   bool autoTechnique = false;
 };
 
-void parseSize(const std::string& s, int& w, int& h) {
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192)
-    fail("--size: expected WxH with 1 <= W,H <= 8192, got '{}'", s);
-}
-
 std::pair<std::string, std::string> splitAssignment(const std::string& s, const char* option) {
   const size_t eq = s.find('=');
   if (eq == std::string::npos || eq == 0) fail("{}: expected NAME=VALUE, got '{}'", option, s);

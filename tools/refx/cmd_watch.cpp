@@ -165,8 +165,7 @@ int runWatch(const WatchOptions& options) {
     }
   } removeCopy{copy};
   int w = 0, h = 0;
-  if (std::sscanf(o.size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192)
-    fail("--size: expected WxH with 1 <= W,H <= 8192, got '{}'", o.size);
+  parseSize(o.size, w, h);
   const CapsProfile caps = loadCapsProfile(o.caps);
   Watcher watcher(o, caps, w, h);
   auto t0 = Clock::now();

@@ -1,6 +1,7 @@
 // Each `refx` subcommand lives in its own file and registers itself here.
 #pragma once
 #include <functional>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +22,9 @@ Action addAsmCommand(CLI::App& app);
 Action addValidateCommand(CLI::App& app);
 Action addRenderCommand(CLI::App& app);
 Action addWatchCommand(CLI::App& app);
+
+// "WxH" of --size into w and h (1..8192 each); refx::Error otherwise.
+void parseSize(const std::string& s, int& w, int& h);
 
 // True when stderr is a terminal (progress display).
 bool stderrIsTerminal();

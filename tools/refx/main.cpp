@@ -7,6 +7,11 @@
 
 namespace refx::cli {
 bool stderrIsTerminal() { return isatty(2) != 0; }
+
+void parseSize(const std::string& s, int& w, int& h) {
+  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192)
+    refx::fail("--size: expected WxH with 1 <= W,H <= 8192, got '{}'", s);
+}
 }  // namespace refx::cli
 
 int main(int argc, char** argv) {
