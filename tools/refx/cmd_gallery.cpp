@@ -49,12 +49,8 @@ int runGallery(const GalleryOptions& o) {
   for (const auto& s : samples) {
     ++index;
     if (tty) std::fprintf(stderr, "\r[%d/%zu] %-40s", index, samples.size(), s.name.c_str());
-    DeviceOptions opt;
-    opt.threads = o.threads;
-    opt.precision = o.precision == "hardware" ? Precision::Hardware : Precision::Exact;
-    Device dev(caps, opt);
-    dev.setRenderTarget(Texture::create2D(Format::A8R8G8B8, w, h));
-    dev.setDepthStencilSurface(std::make_shared<DepthStencilSurface>(w, h));
+    auto devPtr = makeTargetDevice(caps, o.threads, o.precision, w, h);
+    Device& dev = *devPtr;
     dev.clear(d3d::CLEAR_TARGET | d3d::CLEAR_ZBUFFER | d3d::CLEAR_STENCIL, 0xff000000, 1.0f, 0);
     const auto t0 = std::chrono::steady_clock::now();
     samples::SampleResult r = s.render(dev);

@@ -97,12 +97,8 @@ int runRender(const RenderOptions& o) {
               int(fx->techniqueDesc(choice.technique).passes.size()),
               fx->techniqueDesc(choice.technique).passes.size() == 1 ? "" : "es", caps.name.c_str());
 
-  DeviceOptions dopt;
-  dopt.threads = o.threads;
-  dopt.precision = o.precision == "hardware" ? Precision::Hardware : Precision::Exact;
-  Device device(caps, dopt);
-  device.setRenderTarget(Texture::create2D(Format::A8R8G8B8, w, h));
-  device.setDepthStencilSurface(std::make_shared<DepthStencilSurface>(w, h));
+  auto devicePtr = makeTargetDevice(caps, o.threads, o.precision, w, h);
+  Device& device = *devicePtr;
 
   if (o.frames <= 0) {
     scene.draw(*fx, device);

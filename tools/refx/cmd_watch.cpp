@@ -57,11 +57,7 @@ class Watcher {
           so.mesh = o.mesh;
           return so;
         }()) {
-    DeviceOptions dopt;
-    dopt.threads = o.threads;
-    device_ = std::make_unique<Device>(caps, dopt);
-    device_->setRenderTarget(Texture::create2D(Format::A8R8G8B8, w, h));
-    device_->setDepthStencilSurface(std::make_shared<DepthStencilSurface>(w, h));
+    device_ = makeTargetDevice(caps, o.threads, "exact", w, h);
   }
 
   // Loads and draws; returns false when the edit is broken (the last image stays).

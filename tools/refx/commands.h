@@ -1,9 +1,12 @@
 // Each `refx` subcommand lives in its own file and registers itself here.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "refx/pipeline/device.h"
 
 namespace refx::cli {
 
@@ -25,6 +28,11 @@ Action addWatchCommand(CLI::App& app);
 
 // "WxH" of --size into w and h (1..8192 each); refx::Error otherwise.
 void parseSize(const std::string& s, int& w, int& h);
+
+// A device of `caps` with a w x h A8R8G8B8 target and a depth buffer; `precision` is
+// "exact" or "hardware".
+std::unique_ptr<Device> makeTargetDevice(const CapsProfile& caps, int threads, const std::string& precision,
+                                         int w, int h);
 
 // True when stderr is a terminal (progress display).
 bool stderrIsTerminal();

@@ -8,6 +8,17 @@
 namespace refx::cli {
 bool stderrIsTerminal() { return isatty(2) != 0; }
 
+std::unique_ptr<Device> makeTargetDevice(const CapsProfile& caps, int threads, const std::string& precision,
+                                         int w, int h) {
+  DeviceOptions opt;
+  opt.threads = threads;
+  opt.precision = precision == "hardware" ? Precision::Hardware : Precision::Exact;
+  auto dev = std::make_unique<Device>(caps, opt);
+  dev->setRenderTarget(Texture::create2D(Format::A8R8G8B8, w, h));
+  dev->setDepthStencilSurface(std::make_shared<DepthStencilSurface>(w, h));
+  return dev;
+}
+
 void parseSize(const std::string& s, int& w, int& h) {
   if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192)
     refx::fail("--size: expected WxH with 1 <= W,H <= 8192, got '{}'", s);
