@@ -16,4 +16,25 @@ std::string SourceLocation::str() const {
   return s;
 }
 
+std::string Diagnostic::fxcStyle() const {
+  std::string s = where.file;
+  if (where.line > 0) s += where.column > 0 ? fmt::format("({},{})", where.line, where.column) : fmt::format("({})", where.line);
+  if (!s.empty()) s += ": ";
+  s += severity == Severity::Error ? "error " : "warning ";
+  s += code;
+  s += ": ";
+  s += message;
+  return s;
+}
+
+std::string Diagnostic::str() const {
+  std::string s = where.str();
+  if (!s.empty()) s += ": ";
+  s += severity == Severity::Error ? "error " : "warning ";
+  s += code;
+  s += ": ";
+  s += message;
+  return s;
+}
+
 }  // namespace refx
