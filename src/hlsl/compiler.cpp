@@ -1,9 +1,37 @@
+// The compiler as one readable pipeline: preprocess, parse, build the IR (types,
+// inlining, unrolling, flattening), optimise, generate code, check with the
+// validator.
 #include "refx/hlsl/compiler.h"
 
 #include <fstream>
 #include <sstream>
 
+#include "hlsl/ir.h"
+#include "hlsl/parser.h"
+#include "hlsl/preprocessor.h"
+#include "refx/shader/validator.h"
+
 namespace refx::hlsl {
+
+namespace {
+
+const char* kCreator = "refx HLSL compiler 0.1";
+
+bool parseProfile(const std::string& p, shader::Version& v) {
+  static const std::pair<const char*, shader::Version> profiles[] = {
+      {"vs_1_1", {shader::ShaderType::Vertex, 1, 1}}, {"vs_2_0", {shader::ShaderType::Vertex, 2, 0}},
+      {"vs_2_x", {shader::ShaderType::Vertex, 2, 1}}, {"vs_2_a", {shader::ShaderType::Vertex, 2, 1}},
+      {"vs_3_0", {shader::ShaderType::Vertex, 3, 0}}, {"ps_1_1", {shader::ShaderType::Pixel, 1, 1}},
+      {"ps_1_2", {shader::ShaderType::Pixel, 1, 2}}, {"ps_1_3", {shader::ShaderType::Pixel, 1, 3}},
+      {"ps_1_4", {shader::ShaderType::Pixel, 1, 4}}, {"ps_2_0", {shader::ShaderType::Pixel, 2, 0}},
+      {"ps_2_x", {shader::ShaderType::Pixel, 2, 1}}, {"ps_2_a", {shader::ShaderType::Pixel, 2, 1}},
+      {"ps_2_b", {shader::ShaderType::Pixel, 2, 1}}, {"ps_3_0", {shader::ShaderType::Pixel, 3, 0}}};
+  for (const auto& [name, ver] : profiles)
+    if (p == name) { v = ver; return true; }
+  return false;
+}
+
+}  // namespace
 
 std::string CompileResult::messages() const {
   std::string s;
@@ -13,7 +41,73 @@ std::string CompileResult::messages() const {
 
 CompileResult compile(std::string_view source, std::string_view fileName, const CompileOptions& options) {
   CompileResult result;
-  result.diagnostics.push_back({{std::string(fileName), 1, 1}, Severity::Error, "X3501", "the HLSL compiler is not built yet"});
+  DiagnosticSink sink;
+  const std::string file(fileName);
+  shader::Version version;
+  if (!parseProfile(options.profile, version)) {
+    sink.error({file, 0, 0}, "X3501", "unknown profile '{}' (expected vs_1_1, vs_2_0, vs_2_x, vs_3_0, ps_1_1 … ps_1_4, "
+               "ps_2_0, ps_2_x or ps_3_0)", options.profile);
+    result.diagnostics = sink.all();
+    return result;
+  }
+  if (version.ps1x()) {
+    sink.error({file, 0, 0}, "X3501", "compiling HLSL for {} is not supported yet; use ps_2_0 or later", options.profile);
+    result.diagnostics = sink.all();
+    return result;
+  }
+  PreprocessOptions pp;
+  pp.defines = options.defines;
+  pp.includeDirs = options.includeDirs;
+  std::vector<Token> tokens = preprocess(source, fileName, pp, sink);
+
+  ParseOptions po;
+  po.compatibility = options.compatibility;
+  po.rowMajorDefault = options.rowMajorDefault;
+  Program program = parse(tokens, po, sink);
+
+  std::vector<ExprPtr> argExprs;
+  BuildOptions bo;
+  bo.version = version;
+  bo.entry = options.entry;
+  bo.rowMajorDefault = options.rowMajorDefault;
+  bo.compatibility = options.compatibility;
+  for (const std::string& a : options.entryArguments) {
+    std::vector<Token> at = preprocess(a, "<argument>", pp, sink);
+    argExprs.push_back(parseExpression(at, sink));
+    if (argExprs.back()) bo.entryArguments.push_back(argExprs.back().get());
+  }
+  if (!sink.hasErrors()) {
+    IrProgram ir = buildIr(program, bo, sink);
+    if (!sink.hasErrors()) {
+      // Optimisation passes, in order.
+      propagateCopies(ir);
+      foldConstants(ir);
+      removeDeadCode(ir);
+      SourceLocation entryWhere{file, 0, 0};
+      for (const auto& f : program.functions)
+        if (f->name == options.entry) entryWhere = f->where;
+      shader::Shader sh = generateCode(ir, kCreator, sink, entryWhere);
+      if (!sink.hasErrors()) {
+        // Everything refx emits must pass refx's own validator for the profile.
+        shader::SlotCount slots = shader::countSlots(sh);
+        for (const shader::Diagnostic& d : shader::validate(sh)) {
+          bool limit = d.message.find("allows") != std::string::npos;
+          if (limit)
+            sink.error({file, d.pos.line, d.pos.column}, "X4532", "cannot map expression to {} instruction set: {}",
+                       options.profile, d.message);
+          else
+            sink.error({file, d.pos.line, d.pos.column}, "X9000",
+                       "internal error: generated code fails validation: {}", d.message);
+        }
+        if (!sink.hasErrors()) {
+          result.shader = sh;
+          result.tokens = shader::encode(sh);
+          result.instructionSlots = slots.total();
+        }
+      }
+    }
+  }
+  result.diagnostics = sink.all();
   return result;
 }
 

@@ -1,0 +1,132 @@
+// The compiler's own IR: a straight-line list of vector operations on virtual
+// registers, each defined once (functions inlined, loops unrolled, branches turned
+// into selects by the builder). Components of one virtual register are 0..width-1.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hlsl/ast.h"
+#include "refx/core/diagnostics.h"
+#include "refx/shader/bytecode.h"
+
+namespace refx::hlsl {
+
+enum class IrOp : uint8_t {
+  Input,     // shader input register (see IrProgram::inputs)
+  Uniform,   // one constant register of a uniform
+  Constant,  // literal values
+  Combine,   // components gathered from other registers (parts[])
+  Mov, Add, Mul, Mad, Dp2, Dp3, Dp4, Min, Max, Slt, Sge,
+  Cmp,       // src0 >= 0 ? src1 : src2
+  Lrp,       // src0 * src1 + (1 - src0) * src2
+  Frc, Abs, Nrm, Crs,
+  Rcp, Rsq, Exp2, Log2, Pow, Sin, Cos,  // scalar: per component
+  Dsx, Dsy,
+  Tex, TexProj, TexBias, TexLod, TexGrad,  // src0 coordinate, src1/2 gradients; sampler = index
+  Kill,      // texkill src0: discard when any component < 0
+};
+
+struct IrSrc {
+  int reg = -1;                            // virtual register
+  std::array<uint8_t, 4> swizzle{0, 1, 2, 3};  // component of `reg` read for each result component
+  bool negate = false, absolute = false;
+};
+
+struct IrPart {  // one component of a Combine: a literal or (reg, component)
+  int reg = -1;
+  uint8_t component = 0;
+  float literal = 0;
+};
+
+struct IrInst {
+  IrOp op = IrOp::Mov;
+  int dst = -1;
+  int width = 4;       // components of dst
+  bool saturate = false;
+  std::array<IrSrc, 3> src{};
+  int srcCount = 0;
+  int sampler = -1;    // Tex*: sampler index in IrProgram::samplers
+  int index = 0;       // Input: input index; Uniform: uniform index and register row (row << 16 | uniform)
+  std::array<float, 4> literal{};  // Constant
+  std::vector<IrPart> parts;       // Combine
+  SourceLocation where;
+};
+
+struct IrInput {
+  shader::DeclUsage usage = shader::DeclUsage::TexCoord;
+  int usageIndex = 0;
+  int width = 4;
+  std::string semantic;
+  bool isPosition = false;  // ps_3_0 VPOS
+  bool isFace = false;      // ps_3_0 VFACE
+};
+
+struct IrOutput {
+  shader::DeclUsage usage = shader::DeclUsage::Color;
+  int usageIndex = 0;
+  std::string semantic;
+  std::vector<IrPart> parts;  // components written (1..4)
+  SourceLocation where;
+};
+
+// A global the shader reads, as it appears in the constant table.
+struct IrUniform {
+  std::string name;
+  const VarDecl* decl = nullptr;
+  Type type;
+  int registerCount = 0;  // float registers a full allocation takes
+  bool used = false;
+  int firstRegister = -1;  // assigned by the back end
+  std::vector<float> defaults;  // per register, 4 floats each (from the initialiser)
+};
+
+struct IrSampler {
+  std::string name;
+  const VarDecl* decl = nullptr;
+  SamplerDim dim = SamplerDim::Dim2D;
+  int registerIndex = -1;
+};
+
+struct IrProgram {
+  shader::Version version;
+  std::vector<IrInst> code;
+  std::vector<int> regWidth;  // width of each virtual register
+  std::vector<IrInput> inputs;
+  std::vector<IrOutput> outputs;
+  std::vector<IrUniform> uniforms;
+  std::vector<IrSampler> samplers;
+  bool usesKill = false;
+
+  int newReg(int width) {
+    regWidth.push_back(width);
+    return int(regWidth.size()) - 1;
+  }
+};
+
+struct BuildOptions {
+  shader::Version version;
+  std::string entry;
+  bool rowMajorDefault = false;
+  bool compatibility = false;  // the white paper's pre-release dialect
+  std::vector<const Expr*> entryArguments;
+  bool compat() const { return compatibility; }
+};
+
+// Syntax tree → IR for one entry point: type checking, overload resolution,
+// inlining, unrolling and flattening. Diagnostics go to `sink`.
+IrProgram buildIr(const Program& program, const BuildOptions& options, DiagnosticSink& sink);
+
+// Optimisation passes over the IR (each small and named after what it does).
+void foldConstants(IrProgram& ir);
+void propagateCopies(IrProgram& ir);
+void removeDeadCode(IrProgram& ir);
+
+// IR → shader instructions for the version: instruction selection, legalisation to
+// the version's operand rules, register allocation, dcl/def, CTAB. Errors (profile
+// limits) go to `sink`.
+shader::Shader generateCode(IrProgram& ir, const std::string& creator, DiagnosticSink& sink,
+                            const SourceLocation& entryWhere);
+
+}  // namespace refx::hlsl

@@ -1,0 +1,150 @@
+// IR optimisation passes. Each is one small function over the instruction list.
+#include <cmath>
+#include <vector>
+
+#include "hlsl/ir.h"
+
+namespace refx::hlsl {
+
+namespace {
+
+std::vector<int> definitionIndex(const IrProgram& ir) {
+  std::vector<int> def(ir.regWidth.size(), -1);
+  for (size_t i = 0; i < ir.code.size(); ++i)
+    if (ir.code[i].dst >= 0) def[ir.code[i].dst] = int(i);
+  return def;
+}
+
+template <typename F>
+void forEachUse(IrProgram& ir, F&& f) {
+  for (IrInst& in : ir.code) {
+    for (int s = 0; s < in.srcCount; ++s) f(in.src[s].reg);
+    for (IrPart& p : in.parts)
+      if (p.reg >= 0) f(p.reg);
+  }
+  for (IrOutput& o : ir.outputs)
+    for (IrPart& p : o.parts)
+      if (p.reg >= 0) f(p.reg);
+}
+
+}  // namespace
+
+// Instructions whose sources are all literals become literals. (The builder folds as it
+// goes; this catches what copy propagation exposes.)
+void foldConstants(IrProgram& ir) {
+  std::vector<int> def = definitionIndex(ir);
+  auto literalOf = [&](const IrSrc& s, int comp, float& out) {
+    if (s.reg < 0 || def[s.reg] < 0) return false;
+    const IrInst& d = ir.code[def[s.reg]];
+    if (d.op != IrOp::Constant) return false;
+    float v = d.literal[s.swizzle[comp]];
+    if (s.absolute) v = std::fabs(v);
+    if (s.negate) v = -v;
+    out = v;
+    return true;
+  };
+  for (IrInst& in : ir.code) {
+    if (in.op != IrOp::Mov || in.saturate) continue;
+    std::array<float, 4> v{};
+    bool all = true;
+    for (int c = 0; c < in.width && all; ++c) all = literalOf(in.src[0], c, v[c]);
+    if (!all) continue;
+    in.op = IrOp::Constant;
+    in.literal = v;
+    in.srcCount = 0;
+  }
+}
+
+// Uses of a plain `mov` read its source directly (swizzles and negation composed).
+// A saturating mov of a value nothing else reads moves its _sat onto the producer.
+void propagateCopies(IrProgram& ir) {
+  std::vector<int> def = definitionIndex(ir);
+  std::vector<int> uses(ir.regWidth.size(), 0);
+  forEachUse(ir, [&](int& r) { ++uses[r]; });
+  auto satCapable = [](IrOp op) {
+    switch (op) {
+      case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: case IrOp::Combine: case IrOp::Kill:
+      case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad:
+      case IrOp::Sin: case IrOp::Cos: case IrOp::Frc:
+        return false;
+      default: return true;
+    }
+  };
+  for (IrInst& in : ir.code) {
+    if (in.op != IrOp::Mov || !in.saturate) continue;
+    const IrSrc& s = in.src[0];
+    if (s.negate || s.absolute || def[s.reg] < 0 || uses[s.reg] != 1) continue;
+    IrInst& producer = ir.code[def[s.reg]];
+    if (!satCapable(producer.op) || producer.saturate || producer.width != in.width) continue;
+    bool identity = true;
+    for (int c = 0; c < in.width; ++c) identity &= s.swizzle[c] == c;
+    if (!identity) continue;
+    producer.saturate = true;
+    in.saturate = false;  // now a plain copy, removed below
+  }
+  std::vector<const IrInst*> copyOf(ir.regWidth.size(), nullptr);
+  for (const IrInst& in : ir.code)
+    if (in.op == IrOp::Mov && !in.saturate && in.dst >= 0) copyOf[in.dst] = &in;
+  // Resolve chains: each use is rewritten to read the root source.
+  auto resolveSrc = [&](IrSrc& s) {
+    for (int guard = 0; guard < 64 && s.reg >= 0 && copyOf[s.reg]; ++guard) {
+      const IrSrc& inner = copyOf[s.reg]->src[0];
+      IrSrc composed = inner;
+      for (int c = 0; c < 4; ++c) composed.swizzle[c] = inner.swizzle[s.swizzle[c]];
+      if (s.absolute) { composed.absolute = true; composed.negate = s.negate; }
+      else composed.negate = inner.negate != s.negate;
+      if (inner.absolute && !s.absolute) composed.negate = s.negate != inner.negate;
+      s = composed;
+    }
+  };
+  auto resolvePart = [&](IrPart& p) {
+    for (int guard = 0; guard < 64 && p.reg >= 0 && copyOf[p.reg]; ++guard) {
+      const IrSrc& inner = copyOf[p.reg]->src[0];
+      if (inner.negate || inner.absolute) return;
+      p.component = inner.swizzle[p.component];
+      p.reg = inner.reg;
+    }
+  };
+  for (IrInst& in : ir.code) {
+    for (int s = 0; s < in.srcCount; ++s) resolveSrc(in.src[s]);
+    for (IrPart& p : in.parts) resolvePart(p);
+  }
+  for (IrOutput& o : ir.outputs)
+    for (IrPart& p : o.parts) resolvePart(p);
+}
+
+// Drops instructions whose results nothing reads (outputs and texkill are the roots).
+void removeDeadCode(IrProgram& ir) {
+  std::vector<int> def = definitionIndex(ir);
+  std::vector<bool> live(ir.regWidth.size(), false);
+  std::vector<bool> keep(ir.code.size(), false);
+  std::vector<int> work;
+  auto mark = [&](int r) {
+    if (r >= 0 && !live[r]) { live[r] = true; work.push_back(r); }
+  };
+  for (const IrOutput& o : ir.outputs)
+    for (const IrPart& p : o.parts) mark(p.reg);
+  for (size_t i = 0; i < ir.code.size(); ++i)
+    if (ir.code[i].op == IrOp::Kill) {
+      keep[i] = true;
+      for (int s = 0; s < ir.code[i].srcCount; ++s) mark(ir.code[i].src[s].reg);
+    }
+  while (!work.empty()) {
+    int r = work.back();
+    work.pop_back();
+    if (def[r] < 0) continue;
+    keep[def[r]] = true;
+    const IrInst& in = ir.code[def[r]];
+    for (int s = 0; s < in.srcCount; ++s) mark(in.src[s].reg);
+    for (const IrPart& p : in.parts) mark(p.reg);
+  }
+  std::vector<IrInst> out;
+  for (size_t i = 0; i < ir.code.size(); ++i)
+    if (keep[i]) out.push_back(std::move(ir.code[i]));
+  ir.code = std::move(out);
+  for (IrUniform& u : ir.uniforms) u.used = false;
+  for (const IrInst& in : ir.code)
+    if (in.op == IrOp::Uniform) ir.uniforms[in.index & 0xFFFF].used = true;
+}
+
+}  // namespace refx::hlsl
