@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 
 #include "hlsl/ir.h"
 
@@ -184,6 +185,13 @@ class Builder {
       for (size_t i = comps.size(); i < 4; ++i) s.swizzle[i] = comps.back().c;
       return s;
     }
+    // The same gather is one register (values are immutable).
+    std::vector<std::tuple<int, int, float>> key;
+    for (const Comp& c : comps) key.emplace_back(c.reg, c.c, c.reg < 0 ? c.k : 0.0f);
+    if (auto it = combines_.find(key); it != combines_.end()) {
+      s.reg = it->second;
+      return s;
+    }
     IrInst inst;
     inst.op = IrOp::Combine;
     inst.width = int(comps.size());
@@ -195,6 +203,7 @@ class Builder {
       inst.parts.push_back(p);
     }
     s.reg = emitInst(std::move(inst));
+    combines_[key] = s.reg;
     return s;
   }
 
@@ -325,6 +334,7 @@ class Builder {
 
   // ---- types and conversions -------------------------------------------------------------------
   void warnTruncation(const SourceLocation& at) {
+    if (!truncationWarned_.insert({at.file, at.line, at.column}).second) return;
     sink_.warning(at, "X3206", "implicit truncation of vector type");
   }
 
@@ -2135,6 +2145,8 @@ class Builder {
   std::vector<std::unique_ptr<Variable>> variables_;
   std::set<Variable*> uninitialized_;
   std::map<std::vector<float>, int> constants_;
+  std::map<std::vector<std::tuple<int, int, float>>, int> combines_;
+  std::set<std::tuple<std::string, int, int>> truncationWarned_;
   std::vector<Comp> conditions_;
   std::vector<FunctionFrame> functions_;
   std::vector<LoopFrame> loops_;

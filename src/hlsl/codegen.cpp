@@ -890,10 +890,17 @@ class CodeGen {
       if (matches(need, kIdentity)) return kIdentity;
       return std::nullopt;
     }
+    if (matches(need, kIdentity)) return kIdentity;
     if (rules_->swizzles == shader::SwizzleRule::Arbitrary) {
-      // fill don't-cares with identity where possible (reads nicer)
+      // don't-cares repeat the component before them, so listings read ".xy", ".z"
       Map m;
-      for (int i = 0; i < 4; ++i) m[i] = need[i] == 255 ? uint8_t(i) : need[i];
+      uint8_t prev = 255;
+      for (int i = 0; i < 4; ++i)
+        if (need[i] != 255) { prev = need[i]; break; }
+      for (int i = 0; i < 4; ++i) {
+        if (need[i] != 255) prev = need[i];
+        m[i] = prev;
+      }
       return m;
     }
     static const Map candidates[] = {{0, 1, 2, 3}, {0, 0, 0, 0}, {1, 1, 1, 1}, {2, 2, 2, 2}, {3, 3, 3, 3},
@@ -938,8 +945,12 @@ class CodeGen {
   // used components.
   std::array<uint8_t, 4> sourceNeed(const MInst& m, const MSrc& s) const {
     auto need = physicalSwizzle(m, s);
-    if (m.op == Opcode::Tex && &s == &m.src[0] && m.control == 0)
-      for (int i = m.coordWidth; i < 4; ++i) need[i] = 255;
+    int slots = 4;
+    if (m.op == Opcode::Tex && &s == &m.src[0] && m.control == 0) slots = m.coordWidth;
+    if (m.op == Opcode::Dp3 || m.op == Opcode::Nrm) slots = 3;
+    if (m.op == Opcode::Dp2Add && &s != &m.src[2]) slots = 2;
+    if (m.shape == Shape::Positional)
+      for (int i = slots; i < 4; ++i) need[i] = 255;
     return need;
   }
 
@@ -947,24 +958,30 @@ class CodeGen {
   // identity swizzle reads them; `src` then reads that temp.
   void gatherInto(std::vector<MInst>& out, const MInst& user, MSrc& src, const std::array<uint8_t, 4>& need) {
     int t = newTemp(4);
-    MSrc base = src;
+    MSrc base = physicalSource(src);
     base.negate = false;
     base.absolute = false;
-    for (int i = 0; i < 4; ++i) {
-      if (need[i] == 255) continue;
+    auto movInto = [&](uint8_t mask, Map swz) {
       MInst mv;
       mv.op = Opcode::Mov;
       mv.dst = dst(t, 4);
-      mv.dst.mask = uint8_t(1u << i);
+      mv.dst.mask = mask;
       mv.srcCount = 1;
       MSrc s = base;
-      // physical replicate of component need[i]: express as fixed physical read
-      s = physicalSource(base);
-      s.swizzle.fill(need[i]);
+      s.swizzle = swz;
       mv.src[0] = s;
       mv.shape = Shape::Componentwise;
       mv.where = user.where;
       out.push_back(mv);
+    };
+    uint8_t mask = 0;
+    for (int i = 0; i < 4; ++i)
+      if (need[i] != 255) mask |= uint8_t(1u << i);
+    if (auto one = legalSwizzle(need, false)) {
+      movInto(mask, *one);  // one mov when the version can read the swizzle
+    } else {
+      for (int i = 0; i < 4; ++i)
+        if (need[i] != 255) movInto(uint8_t(1u << i), {need[i], need[i], need[i], need[i]});
     }
     MSrc r = vsrc(t);
     r.negate = src.negate;
@@ -998,7 +1015,7 @@ class CodeGen {
         if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
         if (int(seen.size()) < rule->readPorts) { seen.push_back(key); continue; }
         // over the limit: copy this source into a temp
-        auto need = physicalSwizzle(m, src);
+        auto need = sourceNeed(m, src);
         gatherInto(out, m, src, need);
       }
     }
