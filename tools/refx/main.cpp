@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, Action>> commands;
   for (Register reg : {addCapsCommand, addReplayCommand, addGalleryCommand, addBenchCommand,
                        addAssetCommand, addDisasmCommand, addAsmCommand,
-                       addValidateCommand, addRenderCommand, addWatchCommand}) {
+                       addValidateCommand, addRenderCommand, addWatchCommand, addTestCommand}) {
     size_t before = app.get_subcommands({}).size();
     Action action = reg(app);
     auto subs = app.get_subcommands({});
