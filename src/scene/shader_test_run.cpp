@@ -419,6 +419,9 @@ class Runner {
     else if (r.format == ElementFormat::Float2) format = Format::G32R32F;
     else if (r.format != ElementFormat::Float4) fail("format {} has no D3D9 texture format here", r.formatName);
     const int comps = componentCount(r.format);
+    // D3D9 parts cap textures far lower; this keeps a typo from allocating gigabytes.
+    if (int64_t(r.width) * r.height * r.depth > (int64_t(1) << 24))
+      fail("texture of {}x{}x{} texels is larger than refx's limit of 16M texels", r.width, r.height, r.depth);
     TexturePtr t;
     if (r.dimension == ResourceSection::Dimension::Tex2D) t = Texture::create2D(format, r.width, r.height, r.levels);
     else if (r.dimension == ResourceSection::Dimension::Tex3D)
