@@ -26,6 +26,7 @@ Action addValidateCommand(CLI::App& app);
 Action addRenderCommand(CLI::App& app);
 Action addWatchCommand(CLI::App& app);
 Action addFxcCommand(CLI::App& app);
+Action addTestCommand(CLI::App& app);
 
 // "WxH" of --size into w and h (1..8192 each); refx::Error otherwise.
 void parseSize(const std::string& s, int& w, int& h);

@@ -33,7 +33,8 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, Action>> commands;
   for (Register reg : {addCapsCommand, addReplayCommand, addGalleryCommand, addBenchCommand,
                        addAssetCommand, addDisasmCommand, addAsmCommand,
-                       addValidateCommand, addRenderCommand, addWatchCommand, addFxcCommand}) {
+                       addValidateCommand, addRenderCommand, addWatchCommand, addFxcCommand,
+                       addTestCommand}) {
     size_t before = app.get_subcommands({}).size();
     Action action = reg(app);
     auto subs = app.get_subcommands({});
