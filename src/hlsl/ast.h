@@ -135,6 +135,7 @@ struct FunctionDecl {
   std::vector<std::unique_ptr<VarDecl>> params;
   StmtPtr body;  // null for a prototype
   SourceLocation where;
+  bool syntaxErrors = false;  // parts of the body were skipped: no missing-return error
 };
 
 // Whole translation unit. Technique blocks of effects are skipped by the parser.

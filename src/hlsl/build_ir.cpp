@@ -490,6 +490,12 @@ class Builder {
       var->comps[0].sampler = true;
       var->comps[0].k = -1;  // bound on first use
       var->uniform = true;
+    } else if (g.type.cls == TypeClass::Object && g.type.base == BaseType::Texture && opt_.compat()) {
+      // The pre-release dialect samples textures directly (sample3d(noise, p)).
+      var->comps = {Comp{}};
+      var->comps[0].sampler = true;
+      var->comps[0].k = -1;
+      var->uniform = true;
     } else if (g.type.cls == TypeClass::Object) {
       var->comps = {lit(0)};
     } else if (g.isStatic) {
@@ -847,7 +853,7 @@ class Builder {
     functions_.pop_back();
     if (!f.returnType.isVoid()) {
       if (!done.hasReturnValue) {
-        sink_.error(f.where, "X3080", "'{}': function must return a value", f.name);
+        if (!f.syntaxErrors) sink_.error(f.where, "X3080", "'{}': function must return a value", f.name);
       } else {
         size_t at = 0;
         bindOutputs(f.returnType, f.returnSemantic, done.returnValue, at, f.where);
@@ -858,7 +864,7 @@ class Builder {
       bindOutputs(decl->type, decl->semantic, var->comps, at, decl->where);
     }
     scopes_.pop_back();
-    if (ir_.outputs.empty() && !sink_.hasErrors())
+    if (ir_.outputs.empty() && !sink_.hasErrors() && !f.syntaxErrors)
       sink_.error(f.where, "X4502", "'{}': the shader writes no outputs (add a semantic such as {})", f.name,
                   isPixel() ? "COLOR" : "POSITION");
   }
@@ -999,7 +1005,7 @@ class Builder {
           return errorValue();
         }
         if (var->uniform && var->uniformIndex >= 0) bindUniform(*var);
-        if (var->uniform && var->type.isSampler()) samplerIndex(*var);
+        if (var->uniform && var->comps[0].sampler) samplerIndex(*var);
         if (uninitialized_.count(var)) {
           sink_.warning(e.where, "X4000", "use of potentially uninitialized variable '{}'", e.op);
           uninitialized_.erase(var);
@@ -1560,7 +1566,7 @@ class Builder {
       Value v; v.type = Type(); v.comps = {lit(0)}; return v;
     }
     if (!frame.hasReturnValue) {
-      sink_.error(best->where, "X3080", "'{}': function must return a value", best->name);
+      if (!best->syntaxErrors) sink_.error(best->where, "X3080", "'{}': function must return a value", best->name);
       return errorValue();
     }
     return Value{best->returnType, frame.returnValue, true};
@@ -1590,7 +1596,7 @@ class Builder {
       return false;
     }
     for (const Value& a : args)
-      if (!a.type.isNumeric() && !a.type.isSampler()) {
+      if (!a.type.isNumeric() && !a.type.isSampler() && !(opt_.compat() && a.type.cls == TypeClass::Object)) {
         sink_.error(e.where, "X3013", "'{}': no matching intrinsic overload for '{}'", e.op, a.type.name());
         return false;
       }
@@ -2077,7 +2083,8 @@ class Builder {
       sink_.error(at, "X3013", "'{}': intrinsic function takes {} arguments", name, want);
       return errorValue();
     }
-    if (!args[0].type.isSampler() || args[0].comps.empty() || !args[0].comps[0].sampler) {
+    bool textureAsSampler = opt_.compat() && args[0].type.cls == TypeClass::Object && args[0].type.base == BaseType::Texture;
+    if ((!args[0].type.isSampler() && !textureAsSampler) || args[0].comps.empty() || !args[0].comps[0].sampler) {
       sink_.error(at, "X3013", "'{}': first argument must be a sampler", name);
       return errorValue();
     }

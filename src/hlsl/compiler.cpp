@@ -76,12 +76,15 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
     argExprs.push_back(parseExpression(at, sink));
     if (argExprs.back()) bo.entryArguments.push_back(argExprs.back().get());
   }
-  if (!sink.hasErrors()) {
+  {
+    // Type checking runs after syntax errors too, so one run reports every problem;
+    // code is generated only for an error-free program.
     IrProgram ir = buildIr(program, bo, sink);
     if (!sink.hasErrors()) {
       // Optimisation passes, in order.
       propagateCopies(ir);
       foldConstants(ir);
+      if (options.optimize) fuseMultiplyAdd(ir);
       removeDeadCode(ir);
       SourceLocation entryWhere{file, 0, 0};
       for (const auto& f : program.functions)

@@ -121,6 +121,7 @@ IrProgram buildIr(const Program& program, const BuildOptions& options, Diagnosti
 // Optimisation passes over the IR (each small and named after what it does).
 void foldConstants(IrProgram& ir);
 void propagateCopies(IrProgram& ir);
+void fuseMultiplyAdd(IrProgram& ir);
 void removeDeadCode(IrProgram& ir);
 
 // IR → shader instructions for the version: instruction selection, legalisation to

@@ -475,7 +475,9 @@ class Parser {
     if (accept(":")) f->returnSemantic = identifier("a semantic");
     if (accept(";")) { prog.functions.push_back(std::move(f)); return; }
     if (!is("{")) error(peek(), "expected '{{' to open the body of '{}', found {}", f->name, describe(peek()));
+    int before = sink_.errorCount();
     f->body = block();
+    f->syntaxErrors = sink_.errorCount() > before;
     prog.functions.push_back(std::move(f));
   }
 

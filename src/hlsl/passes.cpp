@@ -113,6 +113,37 @@ void propagateCopies(IrProgram& ir) {
     for (IrPart& p : o.parts) resolvePart(p);
 }
 
+// add(mul(a, b), c) → mad(a, b, c) when the product has no other reader.
+void fuseMultiplyAdd(IrProgram& ir) {
+  std::vector<int> def = definitionIndex(ir);
+  std::vector<int> uses(ir.regWidth.size(), 0);
+  forEachUse(ir, [&](int& r) { ++uses[r]; });
+  for (IrInst& in : ir.code) {
+    if (in.op != IrOp::Add) continue;
+    for (int k = 0; k < 2; ++k) {
+      const IrSrc& prod = in.src[k];
+      if (prod.absolute || def[prod.reg] < 0 || uses[prod.reg] != 1) continue;
+      const IrInst& mul = ir.code[def[prod.reg]];
+      if (mul.op != IrOp::Mul || mul.saturate) continue;
+      // The add reads the product through a swizzle: compose it into the mul's sources.
+      IrSrc a = mul.src[0], b = mul.src[1];
+      for (int c = 0; c < 4; ++c) {
+        a.swizzle[c] = mul.src[0].swizzle[prod.swizzle[c]];
+        b.swizzle[c] = mul.src[1].swizzle[prod.swizzle[c]];
+      }
+      if (prod.negate) a.negate = !a.negate;
+      IrSrc addend = in.src[1 - k];
+      in.op = IrOp::Mad;
+      in.src[0] = a;
+      in.src[1] = b;
+      in.src[2] = addend;
+      in.srcCount = 3;
+      uses[prod.reg] = 0;  // the mul is now dead; removeDeadCode drops it
+      break;
+    }
+  }
+}
+
 // Drops instructions whose results nothing reads (outputs and texkill are the roots).
 void removeDeadCode(IrProgram& ir) {
   std::vector<int> def = definitionIndex(ir);

@@ -46,7 +46,9 @@ std::string parseArgs(const std::vector<std::string>& args, FxcArgs& out) {
   static const char* withValue[] = {"Fo", "Fc", "Fh", "Vn", "T", "E", "D", "I"};
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a.size() < 2 || (a[0] != '/' && a[0] != '-')) {
+    // An absolute path (a second '/') is a file, not an fxc-style flag.
+    bool path = a[0] == '/' && a.find('/', 1) != std::string::npos;
+    if (a.size() < 2 || path || (a[0] != '/' && a[0] != '-')) {
       if (!out.input.empty()) return "more than one input file: '" + out.input + "' and '" + a + "'";
       out.input = a;
       continue;
