@@ -277,6 +277,11 @@ class Builder {
       }
       if (o == IrOp::Mov) return a[0];
     }
+    if (o == IrOp::Rcp && width == 1 && !saturate && !a[0][0].literal()) {
+      // rcp(rcp(x)) = x (sqrt then divide: rsq, rcp, rcp)
+      auto it = rcpOf_.find({a[0][0].reg, a[0][0].c});
+      if (it != rcpOf_.end()) return Comps{it->second};
+    }
     IrInst inst;
     inst.op = o;
     inst.width = width;
@@ -284,7 +289,21 @@ class Builder {
     inst.srcCount = int(a.size());
     for (size_t i = 0; i < a.size(); ++i) inst.src[i] = source(a[i]);
     inst.where = where_;
-    return regComps(emitInst(std::move(inst)), width);
+    // Common subexpressions: the same operation on the same sources is one register.
+    std::vector<int> key{int(o), width, int(saturate)};
+    for (int i = 0; i < inst.srcCount; ++i) {
+      const IrSrc& s = inst.src[i];
+      key.insert(key.end(), {s.reg, s.swizzle[0], s.swizzle[1], s.swizzle[2], s.swizzle[3], int(s.negate), int(s.absolute)});
+    }
+    if (auto it = cse_.find(key); it != cse_.end()) return regComps(it->second, width);
+    int reg = emitInst(std::move(inst));
+    cse_[key] = reg;
+    if (o == IrOp::Rcp && width == 1) {
+      Comp r;
+      r.reg = reg;
+      rcpOf_[{reg, 0}] = a[0][0];
+    }
+    return regComps(reg, width);
   }
 
   // Scalar-result ops (dp*) producing one component.
@@ -2152,6 +2171,8 @@ class Builder {
   std::vector<std::unique_ptr<Variable>> variables_;
   std::set<Variable*> uninitialized_;
   std::map<std::vector<float>, int> constants_;
+  std::map<std::vector<int>, int> cse_;
+  std::map<std::pair<int, int>, Comp> rcpOf_;  // rcp result → its operand
   std::map<std::vector<std::tuple<int, int, float>>, int> combines_;
   std::set<std::tuple<std::string, int, int>> truncationWarned_;
   std::vector<Comp> conditions_;

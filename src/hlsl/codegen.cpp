@@ -399,6 +399,23 @@ class CodeGen {
         if (r.type == RegType::TexCrdOut && r.index >= 8) sink_.error(o.where, "X4502", "invalid {} output semantic '{}'", v_.name(), o.semantic);
       }
       if (isPixel() && r.type == RegType::ColorOut && r.index >= 4) sink_.error(o.where, "X4502", "invalid ps output semantic '{}'", o.semantic);
+      if (isPixel() && !sm3() && !r.scalar && r.type == RegType::ColorOut) {
+        // ps_2_x writes oC# by one mov of a whole temp: producers write that temp.
+        int gather = newTemp(4);
+        outputGather_[&o - &ir_.outputs[0]] = gather;
+        std::set<int> regs;
+        for (const IrPart& p : o.parts)
+          if (p.reg >= 0) regs.insert(p.reg);
+        for (int vreg : regs) {
+          Map m;
+          if (uses_[vreg] != 1 || !remappable(vreg) || loc_[vreg].placed || !partMap(o.parts, vreg, m)) continue;
+          Loc& l = loc_[vreg];
+          l.placed = true;
+          l.aliasOf = gather;
+          l.map = m;
+        }
+        continue;
+      }
       if (!outputWritableByAnyOp() || r.scalar) continue;
       std::set<int> regs;
       for (const IrPart& p : o.parts)
@@ -753,6 +770,7 @@ class CodeGen {
       for (int c = 0; c < width; ++c) {
         const IrPart& p = o.parts[c];
         if (p.reg >= 0 && coalescedIntoOutput_.count(p.reg)) continue;
+        if (p.reg >= 0 && outputGather_.count(int(i)) && loc_[p.reg].aliasOf == outputGather_[int(i)]) continue;
         if (p.reg >= 0) byReg[p.reg] |= uint8_t(1u << c);
         else byLiteral[p.literal] |= uint8_t(1u << c);
       }
@@ -773,7 +791,9 @@ class CodeGen {
       }
       if (isPixel() && !sm3()) {
         // ps_2_x: oC# only by one mov of a whole register.
-        if (width == 4 && byReg.empty() && !byLiteral.empty()) {
+        bool allLiteral = true;
+        for (const IrPart& p : o.parts) allLiteral &= p.reg < 0;
+        if (width == 4 && allLiteral) {
           MSrc lit;
           lit.type = RegType::Const;
           lit.index = vectorDef({o.parts[0].literal, o.parts[1].literal, o.parts[2].literal, o.parts[3].literal});
@@ -789,7 +809,7 @@ class CodeGen {
             if (o.parts[c].component != c || ir_.regWidth[src] != 4) whole = false;
         }
         if (!whole) {
-          src = newTemp(4);
+          src = outputGather_.count(int(i)) ? outputGather_[int(i)] : newTemp(4);
           for (auto [reg, mask] : byReg) {
             Map swz = kIdentity;
             for (int c = 0; c < width; ++c)
@@ -1274,6 +1294,7 @@ class CodeGen {
   std::vector<int> physTemp_;
   std::set<int> fixedMap_;
   std::set<int> coalescedIntoOutput_;
+  std::map<int, int> outputGather_;  // ps_2_x: output index → gather temp
   std::vector<OutputReg> outputRegs_;
   std::map<std::pair<int, int>, int> vs3Outputs_;
   std::map<std::pair<int, int>, uint8_t> inputDecl_;
