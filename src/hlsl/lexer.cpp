@@ -77,7 +77,7 @@ void Lexer::problem(size_t offset, const char* code, std::string message) {
 PPToken Lexer::make(PPKind kind, size_t start, size_t length) const {
   PPToken t;
   t.kind = kind;
-  t.text.assign(text_, start, length);
+  t.text = std::string_view(text_).substr(start, length);
   locate(start, t.line, t.column);
   return t;
 }
@@ -237,8 +237,8 @@ PPToken Lexer::next(bool directiveMode) {
       continue;
     }
     PPToken t = make(kind, start, pos_ - start);
-    if (!terminated)
-      t.text += '"';  // unterminated (already reported): close it so later steps see a whole literal
+    if (!terminated)  // already reported: closed here so that later steps see a whole literal
+      t.text = ownSpellings_.emplace_back(std::string(t.text) + '"');
     t.spaceBefore = space;
     t.startOfLine = atLineStart_;
     atLineStart_ = false;
@@ -279,7 +279,8 @@ bool lexSingleToken(std::string_view text, PPToken& out) {
   if (first.kind == PPKind::End || second.kind != PPKind::End || !lexer.problems.empty() ||
       first.text.size() != text.size())
     return false;
-  out = std::move(first);
+  out = first;
+  out.text = text;
   return true;
 }
 

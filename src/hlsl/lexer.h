@@ -3,6 +3,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -31,7 +32,9 @@ struct PPToken {
   uint32_t hideset = 0;       // macros this token came out of (see HideSets in preprocessor.cpp)
   uint32_t file = 0;          // index into the preprocessor's file names
   int line = 0, column = 0;   // 1-based
-  std::string text;           // spelling as written
+  // Spelling as written: a view of the lexer's text or of a spelling the preprocessor
+  // keeps, so that tokens copy and move without allocating.
+  std::string_view text;
 };
 
 // A lexical problem found while lexing; the owner adds the file name and reports it.
@@ -76,13 +79,15 @@ class Lexer {
   // (offset in text_, bytes removed before it): maps text_ offsets back to the source.
   std::vector<std::pair<size_t, size_t>> splices_;
   std::vector<size_t> lineStarts_;  // source offsets where each line begins
+  std::deque<std::string> ownSpellings_;  // spellings not in text_ (a closed unterminated string)
   size_t pos_ = 0;
   bool atLineStart_ = true;
   // Where locate() last looked: the splice and line indexes it reached.
   mutable size_t cursorOffset_ = 0, cursorSplice_ = 0, cursorLine_ = 0;
 };
 
-// True when `text` lexes as exactly one token (the result of a ## paste); it is put in `out`.
+// True when `text` lexes as exactly one token (the result of a ## paste); it is put in
+// `out`, whose text is then `text` itself (so `text` must outlive it).
 bool lexSingleToken(std::string_view text, PPToken& out);
 
 // The value of a string literal as written: quotes removed, escapes resolved.

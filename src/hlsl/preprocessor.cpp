@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -43,6 +44,12 @@ std::string spell(const std::vector<PPToken>& tokens) {
   }
   return s;
 }
+
+// Lets macros_ be searched with a string_view.
+struct StringHash {
+  using is_transparent = void;
+  size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+};
 
 // Hide sets interned as sorted vectors of macro-name ids; 0 is the empty set. The
 // same few sets recur for every token of an expansion, so unions are memoized.
@@ -192,16 +199,21 @@ class Preprocessor {
   void substitute(const Macro& macro, std::vector<std::vector<PPToken>>& args, const PPToken& use,
                   uint32_t hideset, Input& in);
   void paste(std::vector<PPToken>& result, const PPToken& right, const PPToken& use);
-  PPToken builtinToken(const Macro& macro, const PPToken& use) const;
+  PPToken builtinToken(const Macro& macro, const PPToken& use);
+  // Spellings made here (pastes, stringized arguments, __LINE__) live as long as the run.
+  std::string_view keep(std::string spelling) { return spellings_.emplace_back(std::move(spelling)); }
 
   const PreprocessOptions& options_;
   DiagnosticSink& sink_;
   std::vector<std::string> fileNames_;
   std::unordered_map<std::string, uint32_t> fileNameIds_;
   std::unordered_map<std::string, int> macroNameIds_;
-  std::unordered_map<std::string, std::shared_ptr<const Macro>> macros_;
+  std::unordered_map<std::string, std::shared_ptr<const Macro>, StringHash, std::equal_to<>> macros_;
   HideSets hidesets_;
   std::vector<std::unique_ptr<SourceFile>> files_;  // the include stack
+  // Files already read: their text stays, as tokens and macro bodies are views of it.
+  std::vector<std::unique_ptr<SourceFile>> finishedFiles_;
+  std::deque<std::string> spellings_;
   std::unordered_set<std::string> onceFiles_;       // identities of files with #pragma once
   PPToken endOfMain_;
   size_t substitutedTokens_ = 0;
@@ -298,7 +310,7 @@ class ConditionParser {
     // Unsigned arithmetic wraps like the two's complement intmax_t of C compilers,
     // without the undefined behaviour of signed overflow here.
     const bool u = a.isUnsigned || b.isUnsigned;
-    const std::string& o = op.text;
+    const std::string_view o = op.text;
     if (o == "*") return {a.bits * b.bits, u};
     if (o == "+") return {a.bits + b.bits, u};
     if (o == "-") return {a.bits - b.bits, u};
@@ -455,6 +467,7 @@ PPToken Preprocessor::readFileToken() {
       for (const Conditional& c : files_.back()->conditionals)
         report(Severity::Error, c.where, "X1555", "#if without #endif");
       t.endsMainFile = files_.size() == 1;
+      finishedFiles_.push_back(std::move(files_.back()));
       files_.pop_back();
       if (t.endsMainFile) endOfMain_ = t;
       return t;
@@ -488,7 +501,7 @@ void Preprocessor::warnExtraTokens(const std::vector<PPToken>& tokens, size_t fr
 std::optional<PPToken> Preprocessor::directive(const PPToken& hash) {
   PPToken name = lex(true);
   if (name.kind == PPKind::Newline || name.kind == PPKind::End) return std::nullopt;  // '#' alone
-  const std::string& d = name.text;
+  const std::string_view d = name.text;
   if (name.kind != PPKind::Identifier) {
     error(name, "X1504", fmt::format("invalid preprocessor command '{}'", d));
     restOfLine();
@@ -531,7 +544,7 @@ std::optional<PPToken> Preprocessor::directive(const PPToken& hash) {
     }
     PPToken pragma = hash;
     pragma.kind = PPKind::Pragma;
-    pragma.text = spell(rest);
+    pragma.text = keep(spell(rest));
     pragma.startOfLine = false;
     return pragma;
   } else {
@@ -552,7 +565,7 @@ void Preprocessor::defineMacro(const std::vector<PPToken>& tokens, const PPToken
     return;
   }
   auto macro = std::make_shared<Macro>();
-  macro->nameId = nameIdOf(name.text);
+  macro->nameId = nameIdOf(std::string(name.text));
   size_t i = 1;
   // A '(' right after the name, with no space between, makes a function-like macro.
   if (i < tokens.size() && isPunct(tokens[i], "(") && !tokens[i].spaceBefore) {
@@ -570,7 +583,7 @@ void Preprocessor::defineMacro(const std::vector<PPToken>& tokens, const PPToken
           error(tokens[i], "X1500", fmt::format("parameter '{}' appears twice", tokens[i].text));
           return;
         }
-        macro->params.push_back(tokens[i].text);
+        macro->params.emplace_back(tokens[i].text);
         ++i;
         if (i < tokens.size() && isPunct(tokens[i], ",")) {
           ++i;
@@ -614,7 +627,7 @@ void Preprocessor::defineMacro(const std::vector<PPToken>& tokens, const PPToken
       warning(name, "X1519", fmt::format("'{}' : macro redefinition", name.text));
     existing->second = std::move(macro);
   } else {
-    macros_.emplace(name.text, std::move(macro));
+    macros_.emplace(std::string(name.text), std::move(macro));
   }
 }
 
@@ -624,7 +637,7 @@ void Preprocessor::undefineMacro(const PPToken& directiveName) {
     error(tokens.empty() ? directiveName : tokens[0], "X1500", "expected a macro name after #undef");
     return;
   }
-  macros_.erase(tokens[0].text);
+  if (auto it = macros_.find(tokens[0].text); it != macros_.end()) macros_.erase(it);
   warnExtraTokens(tokens, 1, "undef");
 }
 
@@ -732,7 +745,7 @@ void Preprocessor::skipGroup() {
     if (name.kind == PPKind::Newline || name.kind == PPKind::End) continue;
     const std::vector<PPToken> rest = restOfLine();
     if (name.kind != PPKind::Identifier) continue;
-    const std::string& d = name.text;
+    const std::string_view d = name.text;
     if (d == "if" || d == "ifdef" || d == "ifndef") {
       ++depth;
       continue;
@@ -828,7 +841,7 @@ void Preprocessor::lineDirective(const PPToken& directiveName) {
   }
   // The line after the directive gets the number given.
   const int physicalNextLine = end.line - file.lineDelta + 1;
-  file.lineDelta = std::stoi(tokens[0].text) - physicalNextLine;
+  file.lineDelta = std::stoi(std::string(tokens[0].text)) - physicalNextLine;
 }
 
 PPToken Preprocessor::next(Input& in) {
@@ -978,7 +991,7 @@ void Preprocessor::substitute(const Macro& macro, std::vector<std::vector<PPToke
         if (k > 0 && arg[k].spaceBefore) text += ' ';
         text += arg[k].text;
       }
-      str.text = arg.empty() ? "\"\"" : quoteString(text);
+      str.text = keep(quoteString(text));
       // Only string literals' quotes and backslashes are escaped in C; elsewhere a
       // backslash can only be a stray character, already reported.
       result.push_back(std::move(str));
@@ -1052,7 +1065,8 @@ void Preprocessor::substitute(const Macro& macro, std::vector<std::vector<PPToke
 void Preprocessor::paste(std::vector<PPToken>& result, const PPToken& right, const PPToken& use) {
   PPToken& left = result.back();
   PPToken pasted;
-  if (lexSingleToken(left.text + right.text, pasted)) {
+  const std::string_view joined = keep(std::string(left.text) + std::string(right.text));
+  if (lexSingleToken(joined, pasted)) {
     pasted.file = left.file;
     pasted.line = left.line;
     pasted.column = left.column;
@@ -1064,15 +1078,15 @@ void Preprocessor::paste(std::vector<PPToken>& result, const PPToken& right, con
   result.push_back(right);
 }
 
-PPToken Preprocessor::builtinToken(const Macro& macro, const PPToken& use) const {
+PPToken Preprocessor::builtinToken(const Macro& macro, const PPToken& use) {
   PPToken t = use;
   t.hideset = 0;
   if (macro.builtin == Macro::Builtin::Line) {
     t.kind = PPKind::IntLiteral;
-    t.text = std::to_string(use.line);
+    t.text = keep(std::to_string(use.line));
   } else {
     t.kind = PPKind::StringLiteral;
-    t.text = quoteString(fileNames_[use.file]);
+    t.text = keep(quoteString(fileNames_[use.file]));
   }
   return t;
 }
@@ -1088,7 +1102,9 @@ std::vector<Token> Preprocessor::run(std::string_view source, std::string_view f
   // Caller's definitions read as `#define NAME VALUE` lines (so NAME may be F(x) too).
   const uint32_t commandLine = internFileName("<command line>");
   for (const MacroDefinition& def : options_.defines) {
-    Lexer lexer(def.name + " " + def.value);
+    // Kept as a finished file: the macro's body is a view of its text.
+    finishedFiles_.push_back(std::make_unique<SourceFile>(def.name + " " + def.value));
+    Lexer& lexer = finishedFiles_.back()->lexer;
     std::vector<PPToken> tokens;
     for (PPToken t = lexer.next(false); t.kind != PPKind::End; t = lexer.next(false)) {
       t.file = commandLine;
@@ -1125,7 +1141,7 @@ std::vector<Token> Preprocessor::run(std::string_view source, std::string_view f
       case PPKind::Pragma: out.kind = TokenKind::Pragma; break;
       default: out.kind = TokenKind::Punct; break;
     }
-    out.text = t.kind == PPKind::StringLiteral ? resolveEscapes(t.text) : std::move(t.text);
+    out.text = t.kind == PPKind::StringLiteral ? resolveEscapes(t.text) : std::string(t.text);
     out.file = fileNames_[t.file];
     out.line = t.line;
     out.column = t.column;
