@@ -23,7 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Limits that turn hostile input into a diagnostic instead of a hang or a crash.
-constexpr size_t kMaxSubstitutedTokens = size_t{4} << 20;  // all macro expansions of one run together
+constexpr size_t kMaxSubstitutedTokens = size_t{2} << 20;  // all macro expansions of one run together
 constexpr int kMaxArgumentNesting = 200;                    // F(G(H(...))) argument pre-expansion depth
 constexpr size_t kMaxIncludeDepth = 64;
 constexpr int kMaxIncludes = 4096;                          // #include lines processed in one run
@@ -980,6 +980,8 @@ void Preprocessor::substitute(const Macro& macro, std::vector<std::vector<PPToke
 
   std::vector<PPToken> result;
   for (size_t i = 0; i < n && !aborted_; ++i) {
+    // Checked as the result grows, so a blow-up stops before it fills the memory.
+    if (substitutedTokens_ + result.size() > kMaxSubstitutedTokens) break;
     const PPToken& tok = body[i];
     const int param = macro.paramOf[i];
     if (macro.functionLike && isPunct(tok, "#")) {  // checked at #define: a parameter follows
