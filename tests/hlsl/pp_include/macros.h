@@ -1,0 +1,2 @@
+#define FROM_HEADER 5
+int header = __LINE__ + FROM_HEADER;
