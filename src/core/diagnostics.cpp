@@ -16,25 +16,20 @@ std::string SourceLocation::str() const {
   return s;
 }
 
+namespace {
+// "<where>: error X3004: message" with `where` left out when unknown.
+std::string located(std::string where, const Diagnostic& d) {
+  if (!where.empty()) where += ": ";
+  return where + (d.severity == Severity::Error ? "error " : "warning ") + d.code + ": " + d.message;
+}
+}  // namespace
+
 std::string Diagnostic::fxcStyle() const {
   std::string s = where.file;
   if (where.line > 0) s += where.column > 0 ? fmt::format("({},{})", where.line, where.column) : fmt::format("({})", where.line);
-  if (!s.empty()) s += ": ";
-  s += severity == Severity::Error ? "error " : "warning ";
-  s += code;
-  s += ": ";
-  s += message;
-  return s;
+  return located(std::move(s), *this);
 }
 
-std::string Diagnostic::str() const {
-  std::string s = where.str();
-  if (!s.empty()) s += ": ";
-  s += severity == Severity::Error ? "error " : "warning ";
-  s += code;
-  s += ": ";
-  s += message;
-  return s;
-}
+std::string Diagnostic::str() const { return located(where.str(), *this); }
 
 }  // namespace refx

@@ -305,6 +305,21 @@ class Parser {
       return;
     }
     VarDecl mods;
+    int packing = storageModifiers(mods);
+    const Token& typeTok = peek();
+    Type t = typeName();
+    if (packing) t.packing = packing;
+    else if (t.cls == TypeClass::Matrix) t.packing = rowMajor_ ? 1 : 2;
+    if (peek().kind == TokenKind::Identifier && is("(", 1)) {
+      function(prog, t, typeTok);
+      return;
+    }
+    declarationRest(prog, t, std::move(mods), typeTok);
+  }
+
+  // static/const/uniform/extern/shared into `mods`; returns the matrix packing
+  // (0 default, 1 row_major, 2 column_major). Other modifiers are accepted and ignored.
+  int storageModifiers(VarDecl& mods) {
     int packing = 0;
     while (peek().kind == TokenKind::Identifier && kModifiers.count(peek().text)) {
       const std::string& m = next().text;
@@ -316,15 +331,7 @@ class Parser {
       else if (m == "row_major") packing = 1;
       else if (m == "column_major") packing = 2;
     }
-    const Token& typeTok = peek();
-    Type t = typeName();
-    if (packing) t.packing = packing;
-    else if (t.cls == TypeClass::Matrix) t.packing = rowMajor_ ? 1 : 2;
-    if (peek().kind == TokenKind::Identifier && is("(", 1)) {
-      function(prog, t, typeTok);
-      return;
-    }
-    declarationRest(prog, t, std::move(mods), typeTok);
+    return packing;
   }
 
   void pragma(const Token& p) {
@@ -589,14 +596,7 @@ class Parser {
     }
     auto s = makeStmt(StmtKind::Decl, t);
     VarDecl mods;
-    int packing = 0;
-    while (peek().kind == TokenKind::Identifier && kModifiers.count(peek().text)) {
-      const std::string& m = next().text;
-      if (m == "static") mods.isStatic = true;
-      else if (m == "const") mods.isConst = true;
-      else if (m == "row_major") packing = 1;
-      else if (m == "column_major") packing = 2;
-    }
+    int packing = storageModifiers(mods);
     Type base = typeName();
     if (packing) base.packing = packing;
     else if (base.cls == TypeClass::Matrix) base.packing = rowMajor_ ? 1 : 2;
