@@ -1753,14 +1753,16 @@ class Builder {
       Type bt = a.type;
       bt.base = BaseType::Bool;
       Comps r;
-      if (name == "isnan") {  // x != x: both comparisons fail for NaN
-        Comps eq = op(IrOp::Mul, n, {op(IrOp::Sge, n, {a.comps, a.comps}), op(IrOp::Sge, n, {a.comps, a.comps})});
-        r = op(IrOp::Add, n, {Comps(n, lit(1)), negate(eq)});
-      } else {
-        Comps big = op(IrOp::Sge, n, {op(IrOp::Abs, n, {a.comps}), Comps(n, lit(3.4028235e38f))});
-        Comps fin = op(IrOp::Add, n, {Comps(n, lit(1)), negate(big)});
-        r = name == "isinf" ? big : fin;
-      }
+      // Compare x itself with cmp (no subtraction: inf - inf would be NaN).
+      Comps one(n, lit(1)), zero(n, lit(0));
+      Comps nonNegative = op(IrOp::Cmp, n, {a.comps, one, zero});
+      Comps nonPositive = op(IrOp::Cmp, n, {negate(a.comps), one, zero});
+      Comps nan = op(IrOp::Add, n, {one, negate(op(IrOp::Max, n, {nonNegative, nonPositive}))});
+      Comps absA = op(IrOp::Abs, n, {a.comps});
+      Comps inf = op(IrOp::Cmp, n, {op(IrOp::Add, n, {absA, Comps(n, lit(-3.4028235e38f))}), one, zero});
+      if (name == "isnan") r = nan;
+      else if (name == "isinf") r = inf;
+      else r = op(IrOp::Add, n, {one, negate(op(IrOp::Add, n, {inf, nan}))});
       return Value{bt, r, true};
     }
     if (name == "normalize") return unaryFloat([&](const Comps& a) { return normalizeOf(a); });

@@ -7,6 +7,7 @@
 //   5. allocate temporaries (linear scan);
 //   6. write dcl/def, the constant table and the instruction list.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -997,6 +998,19 @@ class CodeGen {
     uint8_t mask = 0;
     for (int i = 0; i < 4; ++i)
       if (need[i] != 255) mask |= uint8_t(1u << i);
+    bool replicate = true;
+    for (int i = 0; i < 4; ++i)
+      if (need[i] != 255 && need[i] != need[std::countr_zero(unsigned(mask))]) replicate = false;
+    if (replicate) {
+      // one component read everywhere: copy it once and read it replicated
+      uint8_t c = need[std::countr_zero(unsigned(mask))];
+      movInto(1, {c, c, c, c});
+      MSrc r = vsrc(t, {0, 0, 0, 0});
+      r.negate = src.negate;
+      r.absolute = src.absolute;
+      src = r;
+      return;
+    }
     if (auto one = legalSwizzle(need, false)) {
       movInto(mask, *one);  // one mov when the version can read the swizzle
     } else {
