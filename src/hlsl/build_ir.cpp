@@ -739,12 +739,16 @@ class Builder {
         return;
       }
       case StmtKind::Return: {
+        // Evaluate first: a call in the expression pushes frames (and may move them).
+        const FunctionDecl* decl = functions_.back().decl;
+        Value v;
+        if (s.expr && !decl->returnType.isVoid()) v = convert(expr(*s.expr), decl->returnType, s.expr->where);
+        act = active();
         FunctionFrame& f = functions_.back();
         if (s.expr) {
           if (f.decl->returnType.isVoid()) {
             sink_.error(s.where, "X3079", "void functions cannot return a value");
           } else {
-            Value v = convert(expr(*s.expr), f.decl->returnType, s.expr->where);
             if (!f.hasReturnValue) { f.returnValue = v.comps; f.hasReturnValue = true; }
             else f.returnValue = select(Comps{act}, v.comps, f.returnValue);
           }

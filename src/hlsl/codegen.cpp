@@ -1001,7 +1001,7 @@ class CodeGen {
     bool replicate = true;
     for (int i = 0; i < 4; ++i)
       if (need[i] != 255 && need[i] != need[std::countr_zero(unsigned(mask))]) replicate = false;
-    if (replicate) {
+    if (replicate && user.op != Opcode::TexKill) {  // texkill reads the whole register
       // one component read everywhere: copy it once and read it replicated
       uint8_t c = need[std::countr_zero(unsigned(mask))];
       movInto(1, {c, c, c, c});
