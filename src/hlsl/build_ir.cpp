@@ -132,7 +132,7 @@ class Builder {
     for (const auto& f : prog_.functions)
       if (f->name == opt_.entry && f->body) { entry = f.get(); break; }
     if (!entry) {
-      sink_.error({prog_.functions.empty() ? std::string() : prog_.functions[0]->where.file, 0, 0}, "X3501",
+      sink_.error({opt_.fileName, 0, 0}, "X3501",
                   "'{}': entrypoint not found", opt_.entry);
       return std::move(ir_);
     }

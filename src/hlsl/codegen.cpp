@@ -386,6 +386,20 @@ class CodeGen {
 
   bool outputWritableByAnyOp() const { return !isPixel() || sm3(); }
 
+  // Registers among `parts` whose only reader is this gather or output and whose
+  // producer can write any component mapping: they can be written in place.
+  std::vector<std::pair<int, Map>> producersToPlace(const std::vector<IrPart>& parts) const {
+    std::set<int> regs;
+    for (const IrPart& p : parts)
+      if (p.reg >= 0) regs.insert(p.reg);
+    std::vector<std::pair<int, Map>> out;
+    for (int vreg : regs) {
+      Map m;
+      if (uses_[vreg] == 1 && remappable(vreg) && !loc_[vreg].placed && partMap(parts, vreg, m)) out.emplace_back(vreg, m);
+    }
+    return out;
+  }
+
   void coalesceOutputs() {
     outputRegs_.clear();
     for (IrOutput& o : ir_.outputs) {
@@ -404,12 +418,7 @@ class CodeGen {
         // ps_2_x writes oC# by one mov of a whole temp: producers write that temp.
         int gather = newTemp(4);
         outputGather_[&o - &ir_.outputs[0]] = gather;
-        std::set<int> regs;
-        for (const IrPart& p : o.parts)
-          if (p.reg >= 0) regs.insert(p.reg);
-        for (int vreg : regs) {
-          Map m;
-          if (uses_[vreg] != 1 || !remappable(vreg) || loc_[vreg].placed || !partMap(o.parts, vreg, m)) continue;
+        for (auto [vreg, m] : producersToPlace(o.parts)) {
           Loc& l = loc_[vreg];
           l.placed = true;
           l.aliasOf = gather;
@@ -418,12 +427,7 @@ class CodeGen {
         continue;
       }
       if (!outputWritableByAnyOp() || r.scalar) continue;
-      std::set<int> regs;
-      for (const IrPart& p : o.parts)
-        if (p.reg >= 0) regs.insert(p.reg);
-      for (int vreg : regs) {
-        Map m;
-        if (uses_[vreg] != 1 || !remappable(vreg) || loc_[vreg].placed || !partMap(o.parts, vreg, m)) continue;
+      for (auto [vreg, m] : producersToPlace(o.parts)) {
         Loc& l = loc_[vreg];
         l.placed = true;
         l.type = r.type;
@@ -437,12 +441,7 @@ class CodeGen {
   void coalesceGathers() {
     for (const IrInst& in : ir_.code) {
       if (in.op != IrOp::Combine) continue;
-      std::set<int> regs;
-      for (const IrPart& p : in.parts)
-        if (p.reg >= 0) regs.insert(p.reg);
-      for (int vreg : regs) {
-        Map m;
-        if (uses_[vreg] != 1 || !remappable(vreg) || loc_[vreg].placed || !partMap(in.parts, vreg, m)) continue;
+      for (auto [vreg, m] : producersToPlace(in.parts)) {
         Loc& l = loc_[vreg];
         l.placed = true;
         l.aliasOf = in.dst;

@@ -69,6 +69,7 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
   BuildOptions bo;
   bo.version = version;
   bo.entry = options.entry;
+  bo.fileName = file;
   bo.rowMajorDefault = options.rowMajorDefault;
   bo.compatibility = options.compatibility;
   for (const std::string& a : options.entryArguments) {

@@ -108,6 +108,7 @@ struct IrProgram {
 struct BuildOptions {
   shader::Version version;
   std::string entry;
+  std::string fileName;  // for diagnostics without a position in the source
   bool rowMajorDefault = false;
   bool compatibility = false;  // the white paper's pre-release dialect
   std::vector<const Expr*> entryArguments;
