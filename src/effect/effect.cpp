@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "ast.h"
 #include "refx/core/text.h"
+#include "refx/hlsl/compiler.h"
 #include "refx/pipeline/dx8_declaration.h"
 #include "refx/shader/assembler.h"
+#include "refx/shader/constant_table.h"
 #include "state_table.h"
 
 namespace refx::effect {
@@ -49,11 +52,13 @@ std::string EffectDiagnostic::str() const {
 
 namespace {
 
-// A shader made from an asm block (with its DirectX 8 declaration).
+// A shader made from an asm block (with its DirectX 8 declaration) or compiled from the
+// effect's HLSL (with the constant table that binds parameters to registers).
 struct CompiledShader {
   bool vertex = true;
   std::vector<uint32_t> tokens;
   std::optional<shader::VsDeclaration> declaration;
+  std::optional<shader::ShaderConstantTable> constants;
   VertexShaderPtr vs;
   PixelShaderPtr ps;
 };
@@ -144,6 +149,9 @@ D3DColor packColor(const std::vector<double>& v) {
 
 struct Effect::Impl {
   std::string fileName;
+  std::string sourceText;  // the effect's text, compiled again for each `compile` expression
+  EffectOptions options;
+  std::map<std::string, ShaderRef> compiled;  // "profile entry(args)" → shader, within this effect
   std::vector<std::string> files;
   std::vector<EffectDiagnostic> diagnostics;
   std::vector<Param> params;
@@ -436,6 +444,58 @@ struct Effect::Impl {
     } else {
       dev.setPixelShader(sh ? sh->ps : nullptr);
     }
+    if (sh && sh->constants) bindParameters(dev, *sh);
+  }
+
+  // What D3DX does for a compiled shader: every uniform of its constant table that names
+  // a parameter gets the parameter's value in the table's registers, and every sampler
+  // its sampler_state (with the texture) on the sampler the table gives.
+  void bindParameters(Device& dev, const CompiledShader& sh) const {
+    for (const shader::ShaderConstant& c : sh.constants->constants) {
+      const Param* p = findParam(c.name);
+      if (!p) continue;  // an entry point's uniform argument ("$k"), folded by the compiler
+      const ParameterDesc& d = p->decl.desc;
+      if (c.registerSet == shader::RegisterSet::Sampler) {
+        if (!d.isSampler()) continue;
+        for (int i = 0; i < std::max(1, c.registerCount); ++i) {
+          const int sampler = (sh.vertex ? d3d::kVertexSampler0 : 0) + c.registerIndex + i;
+          if (sampler < d3d::kMaxSamplers) applySamplerStates(dev, sampler, p->samplerStates);
+        }
+        continue;
+      }
+      if (!d.isNumeric()) continue;
+      Value v = paramValue(*p);
+      if (c.cls == shader::ConstantClass::MatrixRows) v.cls = ParameterClass::MatrixRows;
+      else if (c.cls == shader::ConstantClass::MatrixColumns) v.cls = ParameterClass::MatrixColumns;
+      std::vector<Vec4> regs = registers(v);
+      if (regs.size() > size_t(c.registerCount)) regs.resize(size_t(c.registerCount));
+      if (regs.empty()) continue;
+      const uint32_t first = uint32_t(c.registerIndex), count = uint32_t(regs.size());
+      switch (c.registerSet) {
+        case shader::RegisterSet::Float4:
+          if (sh.vertex) dev.setVertexShaderConstantF(first, &regs[0].x, count);
+          else dev.setPixelShaderConstantF(first, &regs[0].x, count);
+          break;
+        case shader::RegisterSet::Int4: {
+          std::vector<int> ints;
+          for (const Vec4& r : regs)
+            for (float x : {r.x, r.y, r.z, r.w}) ints.push_back(toInt(x));
+          if (sh.vertex) dev.setVertexShaderConstantI(first, ints.data(), count);
+          else dev.setPixelShaderConstantI(first, ints.data(), count);
+          break;
+        }
+        case shader::RegisterSet::Bool: {
+          // One bool register per value (registers() packs four values into one Vec4).
+          std::vector<int> bools;
+          for (double x : v.numbers) bools.push_back(x != 0);
+          if (bools.size() > size_t(c.registerCount)) bools.resize(size_t(c.registerCount));
+          if (sh.vertex) dev.setVertexShaderConstantB(first, bools.data(), uint32_t(bools.size()));
+          else dev.setPixelShaderConstantB(first, bools.data(), uint32_t(bools.size()));
+          break;
+        }
+        case shader::RegisterSet::Sampler: break;
+      }
+    }
   }
 
   void applySamplerStates(Device& dev, int sampler, const std::vector<BoundState>& states) const {
@@ -584,11 +644,9 @@ struct Effect::Impl {
 
   // ---------------------------------------------------------------- building
   ShaderRef buildShader(const ShaderExpr& e, bool vertex, const std::string& what) {
+    if (e.kind == ShaderExpr::Kind::Compile) return compileShader(e, vertex, what);
     auto sh = std::make_shared<CompiledShader>();
     sh->vertex = vertex;
-    if (e.kind == ShaderExpr::Kind::Compile)
-      failAt(e.where, "{}: 'compile {} {}(…)' needs the HLSL compiler, which this refx does not have yet; "
-                      "write the shader as an asm {{ … }} block", what, e.profile, e.entry);
     if (e.decl) {
       if (!vertex) failAt(e.decl->where, "{}: a decl block belongs to a vertex shader", what);
       sh->declaration = shader::parseVsDeclaration(e.decl->text, e.decl->file);
@@ -598,19 +656,80 @@ struct Effect::Impl {
       failAt(e.assembly.where, "{}: expected a {} shader, the asm block is {}", what, vertex ? "vertex" : "pixel",
              parsed.version.name());
     sh->tokens = shader::encode(parsed);
-    static const shader::ValidationCaps kCaps = shaderValidationCaps(loadCapsProfile("ref"));
     // The version's rules, reported at the instruction (the block's text keeps file positions).
-    for (const shader::Diagnostic& d : shader::validate(parsed, kCaps))
+    for (const shader::Diagnostic& d : shader::validate(parsed, validationCaps()))
       failAt(SourceLocation{e.assembly.file, d.pos.line, d.pos.column}, "{}: {}", what, d.message);
+    makeRuntimeShader(*sh, e.assembly.where, what);
+    return sh;
+  }
+
+  static const shader::ValidationCaps& validationCaps() {
+    static const shader::ValidationCaps kCaps = shaderValidationCaps(loadCapsProfile("ref"));
+    return kCaps;
+  }
+
+  void makeRuntimeShader(CompiledShader& sh, const SourceLocation& where, const std::string& what) const {
     try {
-      if (vertex) sh->vs = std::make_shared<VertexShader>(sh->tokens, kCaps);
-      else sh->ps = std::make_shared<PixelShader>(sh->tokens, kCaps);
+      if (sh.vertex) sh.vs = std::make_shared<VertexShader>(sh.tokens, validationCaps());
+      else sh.ps = std::make_shared<PixelShader>(sh.tokens, validationCaps());
     } catch (const Error& err) {
       // The shader's own rules, located at the block: "file:line:col: error: ps_1_1 allows …".
       std::string msg = err.what();
       if (msg.rfind("error: ", 0) == 0) msg = msg.substr(7);
-      failAt(e.assembly.where, "{}: {}", what, msg);
+      failAt(where, "{}: {}", what, msg);
     }
+  }
+
+  // An entry point's uniform argument as HLSL text: the value of a constant expression
+  // of the effect (a literal, a vector constructor, a parameter's current value).
+  std::string argumentText(const Expr& arg) const {
+    const Value v = numeric(arg);
+    if (v.numbers.empty()) failAt(arg.where, "an argument of 'compile' must have a value");
+    std::string list;
+    for (double x : v.numbers) list += fmt::format("{}{}", list.empty() ? "" : ", ", x);
+    if (v.numbers.size() == 1) return list;
+    return fmt::format("float{}({})", v.numbers.size(), list);
+  }
+
+  // `compile PROFILE Entry(args)`: the effect's own text goes to the HLSL compiler with
+  // the entry point; each distinct compile expression is compiled once per effect.
+  ShaderRef compileShader(const ShaderExpr& e, bool vertex, const std::string& what) {
+    hlsl::CompileOptions opts;
+    opts.profile = e.profile;
+    opts.entry = e.entry;
+    opts.includeDirs = options.includeDirs;
+    for (const auto& [name, value] : options.defines) opts.defines.push_back({name, value});
+    for (const Expr& a : e.args) opts.entryArguments.push_back(argumentText(a));
+    const bool vertexProfile = e.profile.rfind("vs", 0) == 0;
+    if (vertexProfile != vertex)
+      failAt(e.where, "{}: expected a {} shader profile, '{}' is a {} profile", what, vertex ? "vertex" : "pixel",
+             e.profile, vertexProfile ? "vertex" : "pixel");
+    std::string key = e.profile + " " + e.entry + "(";
+    for (const std::string& a : opts.entryArguments) key += a + ",";
+    if (auto it = compiled.find(key); it != compiled.end()) return it->second;
+
+    const hlsl::CompileResult r = hlsl::compile(sourceText, fileName, opts);
+    if (!r.ok()) {
+      // Every error goes to the diagnostics; the first one breaks the technique.
+      const Diagnostic* first = nullptr;
+      for (const Diagnostic& d : r.diagnostics) {
+        if (d.severity != Severity::Error) continue;
+        if (!first) { first = &d; continue; }
+        EffectDiagnostic extra;
+        extra.where = d.where;
+        extra.message = fmt::format("{}: error {}: {}", what, d.code, d.message);
+        diagnostics.push_back(std::move(extra));
+      }
+      if (!first) failAt(e.where, "{}: compile {} {} failed", what, e.profile, e.entry);
+      failAt(first->where.line ? first->where : e.where, "{}: compile {} {}: error {}: {}", what, e.profile, e.entry,
+             first->code, first->message);
+    }
+    auto sh = std::make_shared<CompiledShader>();
+    sh->vertex = vertex;
+    sh->tokens = r.tokens;
+    sh->constants = shader::readConstantTable(r.shader);
+    makeRuntimeShader(*sh, e.where, what);
+    compiled.emplace(key, sh);
     return sh;
   }
 
@@ -858,6 +977,8 @@ std::unique_ptr<Effect> Effect::fromText(std::string_view text, const std::strin
                                          const EffectOptions& options) {
   std::unique_ptr<Effect> e(new Effect());
   e->impl_->fileName = fileName;
+  e->impl_->sourceText = text;
+  e->impl_->options = options;
   e->impl_->build(parseEffect(text, fileName, options), options);
   return e;
 }

@@ -5,6 +5,8 @@
 //   technique   := 'technique' name? annotations? '{' pass* '}'
 //   pass        := 'pass' name? annotations? '{' (state '=' value ';')* '}'
 #include <cctype>
+#include <map>
+#include <set>
 
 #include "ast.h"
 #include "refx/core/text.h"
@@ -92,7 +94,7 @@ class Parser {
       } else if (t.text == "struct") {
         skipStruct();
       } else if (t.text == "typedef") {
-        skipPast(";");
+        typedefDeclaration();
       } else {
         topLevelDeclaration(ast);
       }
@@ -148,11 +150,38 @@ class Parser {
     }
   }
 
+  // Structs are the HLSL functions' business; the name is remembered so a function
+  // returning one is recognised.
   void skipStruct() {
     lex_.next();  // struct
-    expectIdent("a struct name");
+    userTypes_.insert(expectIdent("a struct name").text);
     skipBraces();
     expect(";", "after the struct");
+  }
+
+  // `typedef float4 color;` makes `color` a parameter type; other typedefs (of structs,
+  // arrays) name types only HLSL functions use.
+  void typedefDeclaration() {
+    lex_.next();  // typedef
+    accept("const");
+    const Token typeTok = lex_.peek();
+    auto base = type();
+    if (!base) {
+      skipPast(";");
+      return;
+    }
+    for (;;) {
+      Token name = expectIdent("a type name");
+      if (lex_.peek().is("[")) {
+        userTypes_.insert(name.text);
+        skipPast(";");
+        return;
+      }
+      aliases_[name.text] = *base;
+      if (!accept(",")) break;
+    }
+    expect(";", "after the typedef");
+    (void)typeTok;
   }
 
   // Storage classes and type modifiers before a type.
@@ -206,6 +235,10 @@ class Parser {
       lex_.next();
       return d;
     }
+    if (auto a = aliases_.find(t.text); a != aliases_.end()) {
+      lex_.next();
+      return a->second;
+    }
     if (auto o = objectType(t.text)) {
       lex_.next();
       ParameterDesc d;
@@ -227,6 +260,17 @@ class Parser {
     const Modifiers mods = modifiers();
     const Token typeTok = lex_.peek();
     auto baseType = type();
+    if (!baseType && typeTok.kind == TokenKind::Ident && userTypes_.count(typeTok.text)) {
+      lex_.next();
+      Token name = expectIdent("a name");
+      if (lex_.peek().is("(")) {  // a function returning a struct
+        skipFunction();
+        ast.functions.push_back(name.text);
+        return;
+      }
+      failAt(typeTok.where, "'{}' is a parameter of struct type '{}'; struct parameters are not supported, "
+                            "declare its members as parameters", name.text, typeTok.text);
+    }
     if (!baseType) {
       if (typeTok.kind == TokenKind::Ident && lex_.peek().kind == TokenKind::Ident) {
         // A user type (struct) or an unknown word: `Name name …`.
@@ -597,6 +641,8 @@ class Parser {
   }
 
   Lexer lex_;
+  std::set<std::string> userTypes_;                    // struct names and typedefs of them
+  std::map<std::string, ParameterDesc> aliases_;        // typedefs of parameter types
   int depth_ = 0;
   int angleDepth_ = 0;
 };

@@ -287,6 +287,7 @@ class Parser {
     if (accept(";")) return;
     if (peek().kind == TokenKind::Pragma) { pragma(next()); return; }
     if (is("technique") || is("technique10") || is("technique11")) { skipTechnique(); return; }
+    if (isEffectShaderObject()) { skipDeclaration(); return; }
     if (is("typedef")) {
       next();
       accept("const");
@@ -344,6 +345,26 @@ class Parser {
       else sink_.warning(loc(p), "X3568", "unknown pack_matrix argument: '{}'", p.text);
     }
     // #pragma warning and others: accepted and ignored.
+  }
+
+  // `VertexShader vs = compile vs_2_0 VS();`, `PixelShader ps = asm { … };`: shader
+  // objects of effects, which the effect framework builds; the compiler passes over them.
+  bool isEffectShaderObject() const {
+    static const std::set<std::string> kObjects = {"VertexShader", "PixelShader", "vertexshader", "pixelshader",
+                                                   "VertexFragment", "PixelFragment"};
+    return peek().kind == TokenKind::Identifier && kObjects.count(peek().text) &&
+           peek(1).kind == TokenKind::Identifier;
+  }
+
+  void skipDeclaration() {
+    int depth = 0;
+    while (peek().kind != TokenKind::EndOfFile) {
+      const Token& t = next();
+      if (t.kind != TokenKind::Punct) continue;
+      if (t.text == "{") ++depth;
+      else if (t.text == "}") --depth;
+      else if (t.text == ";" && depth <= 0) return;
+    }
   }
 
   void skipTechnique() {
