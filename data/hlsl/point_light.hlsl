@@ -7,6 +7,11 @@
 // - the vertex shader computes Out.Att from the world-space light vector before it
 //   is moved to tangent space ("Out.Att = Light * LightRange" in the article names
 //   the light vector Light);
+// - a point light's rays "spread out from the position of the point light", so the
+//   light vector is the light's position minus the surface point: vecLightDir holds
+//   the light's world position here, and Light = vecLightDir.xyz - PosWorld (the
+//   bump-mapping example's constant direction would give every pixel |Att| = 1,
+//   attenuation 1 - 1 = 0, a black sphere);
 // - "ambient", used in the last line but not declared in this example, is the 0.2
 //   of the bump-mapping example's return statement (float4 ambient = 0.2).
 // Compile: refx fxc /T vs_1_1 /E VS point_light.hlsl; refx fxc /T ps_2_0 /E PS point_light.hlsl
@@ -37,9 +42,9 @@ VS_OUTPUT VS(float4 Pos : POSITION, float2 Tex : TEXCOORD, float3 Normal : NORMA
     worldToTangentSpace[2] = mul(Normal, matWorld);
 
     Out.Tex = Tex.xy;
-    float3 Light = vecLightDir.xyz;
-    Out.Light.xyz = mul(worldToTangentSpace, Light); // L
     float3 PosWorld = normalize(mul(Pos, matWorld));
+    float3 Light = vecLightDir.xyz - PosWorld; // from the surface to the light
+    Out.Light.xyz = mul(worldToTangentSpace, Light); // L
     float3 Viewer = vecEye - PosWorld; // V
     Out.View = mul(worldToTangentSpace, Viewer);
 

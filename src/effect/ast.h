@@ -84,6 +84,10 @@ struct EffectAst {
   std::vector<TechniqueDecl> techniques;
   std::vector<std::string> functions;  // HLSL functions (compiled by `compile`)
   std::vector<std::string> files;      // the effect and its includes
+  // The DirectX 9 white paper's pre-release dialect, announced by an `fx.2.0` line:
+  // vec2/vec3/vec4 and volumetexture here, and `compile` uses the HLSL compiler's
+  // compatibility option.
+  bool preReleaseDialect = false;
 };
 
 // A numeric type name ("float4x3", "int2", "DWORD"): its class, scalar type and

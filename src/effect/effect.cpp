@@ -151,7 +151,8 @@ struct Effect::Impl {
   std::string fileName;
   std::string sourceText;  // the effect's text, compiled again for each `compile` expression
   EffectOptions options;
-  std::map<std::string, ShaderRef> compiled;  // "profile entry(args)" → shader, within this effect
+  std::map<std::string, ShaderRef> compiled;
+  bool preReleaseDialect = false;  // `fx.2.0` files compile with the compatibility option  // "profile entry(args)" → shader, within this effect
   std::vector<std::string> files;
   std::vector<EffectDiagnostic> diagnostics;
   std::vector<Param> params;
@@ -336,8 +337,10 @@ struct Effect::Impl {
     return v;
   }
 
-  static bool constructorShape(const std::string& name, ParameterDesc& shape) {
-    const auto t = numericTypeName(name);
+  bool constructorShape(const std::string& name, ParameterDesc& shape) const {
+    // The pre-release dialect's vec2/vec3/vec4 are float2/float3/float4.
+    const bool vec = preReleaseDialect && name.size() == 4 && name.rfind("vec", 0) == 0;
+    const auto t = numericTypeName(vec ? "float" + name.substr(3) : name);
     if (!t) return false;
     shape = *t;
     // A constructor lists a matrix's values row by row.
@@ -456,6 +459,13 @@ struct Effect::Impl {
       if (!p) continue;  // an entry point's uniform argument ("$k"), folded by the compiler
       const ParameterDesc& d = p->decl.desc;
       if (c.registerSet == shader::RegisterSet::Sampler) {
+        if (d.isTexture()) {  // the pre-release dialect samples a texture directly
+          for (int i = 0; i < std::max(1, c.registerCount); ++i) {
+            const int sampler = (sh.vertex ? d3d::kVertexSampler0 : 0) + c.registerIndex + i;
+            if (sampler < d3d::kMaxSamplers) dev.setTexture(sampler, p->store->texture);
+          }
+          continue;
+        }
         if (!d.isSampler()) continue;
         for (int i = 0; i < std::max(1, c.registerCount); ++i) {
           const int sampler = (sh.vertex ? d3d::kVertexSampler0 : 0) + c.registerIndex + i;
@@ -698,6 +708,7 @@ struct Effect::Impl {
     opts.profile = e.profile;
     opts.entry = e.entry;
     opts.includeDirs = options.includeDirs;
+    opts.compatibility = preReleaseDialect;
     for (const auto& [name, value] : options.defines) opts.defines.push_back({name, value});
     for (const Expr& a : e.args) opts.entryArguments.push_back(argumentText(a));
     const bool vertexProfile = e.profile.rfind("vs", 0) == 0;
@@ -885,6 +896,7 @@ struct Effect::Impl {
   void build(EffectAst&& ast, const EffectOptions& options) {
     files = ast.files;
     functions = ast.functions;
+    preReleaseDialect = ast.preReleaseDialect;
     for (ParameterDecl& decl : ast.parameters) {
       if (findParam(decl.desc.name))
         failAt(decl.where, "redefinition of parameter '{}'", decl.desc.name);

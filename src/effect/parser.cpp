@@ -91,6 +91,8 @@ class Parser {
         ast.techniques.push_back(technique());
       } else if (t.isIdent("technique10") || t.isIdent("technique11")) {
         failAt(t.where, "'{}' is a Direct3D 10/11 effect construct; D3D9 effects use 'technique'", t.text);
+      } else if (t.isIdent("fx")) {  // no type is called fx: the `fx.2.0` header
+        preReleaseHeader(ast);
       } else if (t.text == "struct") {
         skipStruct();
       } else if (t.text == "typedef") {
@@ -148,6 +150,15 @@ class Parser {
       if (t.is("{")) ++depth;
       if (t.is("}")) --depth;
     }
+  }
+
+  // `fx.2.0`: the rest of the line is the version.
+  void preReleaseHeader(EffectAst& ast) {
+    const Token fx = lex_.next();
+    while (lex_.peek().kind != TokenKind::End && lex_.peek().where.line == fx.where.line &&
+           lex_.peek().where.file == fx.where.file)
+      lex_.next();
+    ast.preReleaseDialect = preRelease_ = true;
   }
 
   // Structs are the HLSL functions' business; the name is remembered so a function
@@ -233,6 +244,20 @@ class Parser {
     }
     if (auto d = numericTypeName(t.text)) {
       lex_.next();
+      return d;
+    }
+    if (preRelease_ && (t.text == "vec2" || t.text == "vec3" || t.text == "vec4")) {
+      lex_.next();
+      ParameterDesc d;
+      d.cls = ParameterClass::Vector;
+      d.columns = t.text[3] - '0';
+      return d;
+    }
+    if (preRelease_ && t.text == "volumetexture") {
+      lex_.next();
+      ParameterDesc d;
+      d.cls = ParameterClass::Object;
+      d.type = ParameterType::Texture3D;
       return d;
     }
     if (auto a = aliases_.find(t.text); a != aliases_.end()) {
@@ -641,6 +666,7 @@ class Parser {
   }
 
   Lexer lex_;
+  bool preRelease_ = false;
   std::set<std::string> userTypes_;                    // struct names and typedefs of them
   std::map<std::string, ParameterDesc> aliases_;        // typedefs of parameter types
   int depth_ = 0;

@@ -806,7 +806,7 @@ class CodeGen {
         if (whole) {
           src = byReg.begin()->first;
           for (int c = 0; c < 4; ++c)
-            if (o.parts[c].component != c || ir_.regWidth[src] != 4) whole = false;
+            if (o.parts[c].reg != src || o.parts[c].component != c || ir_.regWidth[src] != 4) whole = false;
         }
         if (!whole) {
           src = outputGather_.count(int(i)) ? outputGather_[int(i)] : newTemp(4);

@@ -59,10 +59,6 @@ class Parser {
   Program program() {
     Program prog;
     prog_ = &prog;
-    if (opt_.compatibility && peek().text == "fx") {  // "fx.2.0" header of the white paper
-      int line = peek().line;
-      while (peek().kind != TokenKind::EndOfFile && peek().line == line) ++pos_;
-    }
     while (peek().kind != TokenKind::EndOfFile) {
       size_t start = pos_;
       try {
@@ -285,6 +281,11 @@ class Parser {
   // ---- top level -----------------------------------------------------------------------------
   void topLevel(Program& prog) {
     if (accept(";")) return;
+    if (opt_.compatibility && is("fx") && peek(1).line == peek().line) {  // "fx.2.0" header of the white paper
+      const int line = peek().line;
+      while (peek().kind != TokenKind::EndOfFile && peek().line == line) ++pos_;
+      return;
+    }
     if (peek().kind == TokenKind::Pragma) { pragma(next()); return; }
     if (is("technique") || is("technique10") || is("technique11")) { skipTechnique(); return; }
     if (isEffectShaderObject()) { skipDeclaration(); return; }

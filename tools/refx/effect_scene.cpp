@@ -1,5 +1,6 @@
 #include "effect_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "refx/d3dx/teapot.h"
 #include "refx/d3dx/xfile.h"
 #include "refx/resource/image_io.h"
+#include "refx/shader/constant_table.h"
 
 namespace refx::cli {
 
@@ -42,6 +44,8 @@ constexpr NameConvention kNameConventions[] = {
     {"mWorldViewProj", "WORLDVIEWPROJECTION"}, {"matWVP", "WORLDVIEWPROJECTION"},
     {"lhtR", "LIGHTDIRECTION"}, {"vLightDir", "LIGHTDIRECTION"}, {"LightDir", "LIGHTDIRECTION"},
     {"vEye", "CAMERAPOSITION"}, {"vEyePos", "CAMERAPOSITION"}, {"EyePos", "CAMERAPOSITION"},
+    // "Implementing Lighting Models With HLSL": the application sets these by name.
+    {"matWorldViewProj", "WORLDVIEWPROJECTION"}, {"vecEye", "CAMERAPOSITION"}, {"vecLightDir", "LIGHTVECTOR"},
 };
 
 std::string semanticOf(const effect::ParameterDesc& d) {
@@ -109,6 +113,7 @@ const d3dx::Mesh& EffectScene::mesh() {
 
 std::vector<std::string> EffectScene::prepare(Effect& fx) {
   std::vector<std::string> warnings;
+  samplerTextures_.clear();
   const std::filesystem::path dir = std::filesystem::path(fx.fileName()).parent_path();
   auto resolveTexture = [&](const std::string& spec) -> TexturePtr {
     if (TexturePtr t = builtinTexture(spec)) return t;
@@ -118,6 +123,18 @@ std::vector<std::string> EffectScene::prepare(Effect& fx) {
   };
   for (Handle p = 0; p < fx.parameterCount(); ++p) {
     const effect::ParameterDesc& d = fx.parameterDesc(p);
+    if (d.isSampler()) {
+      // A sampler without sampler_state gets its texture from the application, on the
+      // sampler register the shader's constant table gives (bound after each BeginPass).
+      if (auto it = options_.textures.find(d.name); it != options_.textures.end()) {
+        try {
+          samplerTextures_.emplace_back(d.name, resolveTexture(it->second));
+        } catch (const Error& e) {
+          warnings.push_back(fmt::format("sampler parameter '{}': {}", d.name, e.what()));
+        }
+      }
+      continue;
+    }
     if (d.isTexture()) {
       std::string spec;
       if (auto it = options_.textures.find(d.name); it != options_.textures.end()) spec = it->second;
@@ -176,6 +193,52 @@ std::vector<std::string> EffectScene::prepare(Effect& fx) {
   return warnings;
 }
 
+// What an application does with ID3DXConstantTable::GetSamplerIndex: the texture of a
+// sampler parameter goes on the register the current shaders read that sampler from.
+void EffectScene::bindSamplerTextures(Device& device) {
+  if (samplerTextures_.empty()) return;
+  const DeviceState& st = device.state();
+  const std::pair<const ShaderObject*, int> shaders[] = {{st.pixelShader.get(), 0},
+                                                         {st.vertexShader.get(), d3d::kVertexSampler0}};
+  for (const auto& [shaderObject, base] : shaders) {
+    if (!shaderObject) continue;
+    const auto table = shader::readConstantTable(shaderObject->decoded());
+    if (!table) continue;
+    for (const auto& [name, texture] : samplerTextures_) {
+      const shader::ShaderConstant* c = table->find(name);
+      if (c && c->registerSet == shader::RegisterSet::Sampler && base + c->registerIndex < d3d::kMaxSamplers)
+        device.setTexture(base + c->registerIndex, texture);
+    }
+  }
+}
+
+// An application drawing a mesh with a vertex shader whose inputs its FVF does not
+// name (TANGENT, BINORMAL) declares them: one float4 element per dcl input, filled
+// from the mesh by bindDeclarationStream.
+void EffectScene::declareShaderInputs(Device& device) {
+  const DeviceState& st = device.state();
+  if (!st.vertexShader || st.declaration.fvf == 0) return;
+  std::vector<std::pair<uint8_t, uint8_t>> inputs;  // (usage, index)
+  bool missing = false;
+  for (const shader::Instruction& ins : st.vertexShader->decoded().instructions) {
+    if (ins.opcode != shader::Opcode::Dcl || ins.dst.type != shader::RegType::Input) continue;
+    const auto usage = uint8_t(ins.usage);
+    inputs.emplace_back(usage, ins.usageIndex);
+    missing |= st.declaration.find(usage, ins.usageIndex) == nullptr;
+  }
+  if (!missing) return;
+  VertexDeclaration decl;
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    VertexElement e;
+    e.offset = uint16_t(16 * i);
+    e.type = d3d::DECLTYPE_FLOAT4;
+    e.usage = inputs[i].first;
+    e.usageIndex = inputs[i].second;
+    decl.elements.push_back(e);
+  }
+  device.setVertexDeclaration(decl);
+}
+
 // A vertex buffer laid out for a declaration a pass set (a DirectX 8 `decl` block):
 // each element is filled from the mesh element of its usage.
 void EffectScene::bindDeclarationStream(Device& device) {
@@ -206,6 +269,13 @@ void EffectScene::bindDeclarationStream(Device& device) {
       } else if (e.usage == d3d::DECLUSAGE_TEXCOORD && e.usageIndex < 8 && layout.texCoord[e.usageIndex] >= 0) {
         const Vec4 t = m.texCoord(v, e.usageIndex);
         src[0] = t.x, src[1] = t.y, src[2] = t.z, src[3] = t.w;
+      } else if ((e.usage == d3d::DECLUSAGE_TANGENT || e.usage == d3d::DECLUSAGE_BINORMAL) && layout.normal >= 0 &&
+                 layout.texCoord[1] >= 0 && layout.texDims[1] == 3) {
+        // The textured sphere keeps its tangent in texture set 1; the binormal is N x T.
+        const Vec4 t4 = m.texCoord(v, 1);
+        Vec3 t{t4.x, t4.y, t4.z};
+        if (e.usage == d3d::DECLUSAGE_BINORMAL) t = cross(m.normal(v), t);
+        src[0] = t.x, src[1] = t.y, src[2] = t.z, src[3] = 0;
       } else if (e.usage == d3d::DECLUSAGE_COLOR && layout.diffuse >= 0) {
         const D3DColor c = m.diffuse(v);
         std::memcpy(out + e.offset, &c, 4);
@@ -249,6 +319,8 @@ void EffectScene::draw(Effect& fx, Device& device) {
     if (equalsNoCase(d.name, "BCLR") && d.isNumeric()) background = uint32_t(fx.getInt(p));
     std::string sem = semanticOf(d);
     if (sem.empty()) continue;
+    if (std::any_of(options_.sets.begin(), options_.sets.end(), [&](const auto& set) { return set.first == d.name; }))
+      continue;  // the user's --set value stands
     if (sem == "TIME") {
       if (d.isNumeric()) fx.setFloat(p, options_.time);
       continue;
@@ -259,6 +331,10 @@ void EffectScene::draw(Effect& fx, Device& device) {
     }
     if (sem == "LIGHTDIRECTION" || sem == "DIRECTION") {
       fx.setVector(p, Vec4(-kTowardLight, 0));
+      continue;
+    }
+    if (sem == "LIGHTVECTOR") {  // from the surface toward the light: the L of N.L
+      fx.setVector(p, Vec4(kTowardLight, 0));
       continue;
     }
     // WORLD, VIEW, PROJECTION and products, with INVERSE / TRANSPOSE suffixes.
@@ -291,6 +367,8 @@ void EffectScene::draw(Effect& fx, Device& device) {
   const int passes = fx.begin(device, 0);
   for (int i = 0; i < passes; ++i) {
     fx.beginPass(i);
+    bindSamplerTextures(device);
+    declareShaderInputs(device);
     for (const auto& [reg, v] : options_.vsConstants) device.setVertexShaderConstantF(uint32_t(reg), &v.x, 1);
     for (const auto& [reg, v] : options_.psConstants) device.setPixelShaderConstantF(uint32_t(reg), &v.x, 1);
     bindDeclarationStream(device);

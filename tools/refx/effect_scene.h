@@ -16,7 +16,8 @@ namespace refx::cli {
 
 struct EffectSceneOptions {
   std::string mesh = "sphere";  // sphere | teapot | torus | box | FILE.x | FILE.obj | a built-in mesh
-  std::map<std::string, std::string> textures;  // parameter → built-in texture or image file
+  // texture or sampler parameter → built-in texture or image file
+  std::map<std::string, std::string> textures;
   std::vector<std::pair<std::string, std::string>> sets;  // parameter → value ("1,0,0,1", text)
   float time = 0;
   // Constants the application sets itself after each BeginPass (registers an effect
@@ -52,10 +53,13 @@ class EffectScene {
 
  private:
   void bindDeclarationStream(Device& device);
+  void bindSamplerTextures(Device& device);
+  void declareShaderInputs(Device& device);
   EffectSceneOptions options_;
   std::optional<d3dx::Mesh> mesh_;
   std::string meshName_;
   std::vector<std::pair<VertexDeclaration, VertexBufferPtr>> repacked_;
+  std::vector<std::pair<std::string, TexturePtr>> samplerTextures_;  // sampler parameter → texture
 };
 
 }  // namespace refx::cli

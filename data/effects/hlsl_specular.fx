@@ -1,0 +1,15 @@
+// "Implementing Lighting Models With HLSL" (Engel), Phong specular lighting: ambient + diffuse * N.L + (R.V)^8 per pixel.
+// The program is data/hlsl/specular.hlsl, included unchanged; this file adds the technique
+// the article's application runs: the vertex shader for vs_1_1, the pixel shader for
+// ps_2_0. The application sets matWorldViewProj, matWorld, vecLightDir (toward the
+// light) and vecEye by name; `refx render` binds those names the same way.
+#include "../hlsl/specular.hlsl"
+
+technique Specular
+{
+    pass P0
+    {
+        VertexShader = compile vs_1_1 VS();
+        PixelShader = compile ps_2_0 PS();
+    }
+}
