@@ -514,6 +514,15 @@ constexpr Expected kSeedEffects[] = {
     {"paper_diffuse.fx", {"PS11", "PS11", "PS11", "PS11", "PS11", "PS11", "DOT3", "Emboss", "Emboss"}},
     {"bump_earth.fx", {"BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "NoBump",
                        "BumpEnvMap", "NoBump"}},
+    // The HLSL lighting programs: vs_1_1 with ps_2_0, as the article compiles them.
+    {"hlsl_ambient.fx", {"Ambient", "Ambient", "Ambient", "", "", "", "", "", ""}},
+    {"hlsl_diffuse.fx", {"Diffuse", "Diffuse", "Diffuse", "", "", "", "", "", ""}},
+    {"hlsl_specular.fx", {"Specular", "Specular", "Specular", "", "", "", "", "", ""}},
+    {"hlsl_self_shadow.fx", {"SelfShadow", "SelfShadow", "SelfShadow", "", "", "", "", "", ""}},
+    {"hlsl_bump.fx", {"Bump", "Bump", "Bump", "", "", "", "", "", ""}},
+    {"hlsl_point_light.fx", {"PointLight", "PointLight", "PointLight", "", "", "", "", "", ""}},
+    // The wood shader: ps_2_0 (64 slots) with the added vs_2_0 vertex shader.
+    {"wood.fx", {"Wood", "Wood", "Wood", "", "", "", "", "", ""}},
 };
 
 class SeedEffectChoice : public ::testing::TestWithParam<Expected> {};

@@ -75,6 +75,28 @@ const std::vector<EffectSample>& effectList() {
                  "seeds/000 per-pixel lighting column and its fallbacks", {}});
     v.push_back({"bump_earth.fx", "fx-bump-earth", "Bump-environment-mapped earth as an effect, with a fallback",
                  "seeds/000 \"DirectX 6 Multi-Texture\" listing", {}});
+    // "Implementing Lighting Models With HLSL": the six programs, compiled by refx from
+    // data/hlsl, on a lit sphere (the bump-mapped ones on the earth with its normal map).
+    const char* const kArticle = "seeds/001 \"Implementing Lighting Models With HLSL\"";
+    v.push_back({"hlsl_ambient.fx", "fx-hlsl-ambient", "HLSL ambient lighting (vs_1_1, ps_2_0)", kArticle, {}});
+    v.push_back({"hlsl_diffuse.fx", "fx-hlsl-diffuse", "HLSL diffuse lighting: ambient + N.L", kArticle, {}});
+    v.push_back({"hlsl_specular.fx", "fx-hlsl-specular", "HLSL Phong specular: (R.V)^8 per pixel", kArticle, {}});
+    v.push_back({"hlsl_self_shadow.fx", "fx-hlsl-self-shadow", "HLSL specular with the self-shadowing term",
+                 kArticle, {}});
+    cli::EffectSceneOptions earth;
+    earth.textures = {{"ColorMapSampler", "earth-color"}, {"BumpMapSampler", "earth-normal"}};
+    v.push_back({"hlsl_bump.fx", "fx-hlsl-bump", "HLSL bump mapping with a gloss map on the earth", kArticle, earth});
+    v.push_back({"hlsl_point_light.fx", "fx-hlsl-point-light",
+                 "HLSL bump-mapped point light with attenuation, the light just off the surface", kArticle, earth});
+    // The wood shader on a box: the noise volume, world-space L and I, white light, and
+    // the turbulence down to 0.1 so the rings show through the noise.
+    cli::EffectSceneOptions wood;
+    wood.mesh = "box";
+    wood.textures = {{"noise", "wood-volume"}};
+    wood.sets = {{"L", "-0.57,0.48,-0.67"}, {"I", "0,0,1"}, {"ambient_color", "1,1,1"},
+                 {"diffuse_color", "1,1,1"}, {"specular_color", "1,1,1"}, {"turbulence", "0.1"}};
+    v.push_back({"wood.fx", "fx-wood", "Renderman wood (the effect paper's HLSL, pre-release dialect) on a box",
+                 "seeds/000 DirectX 9 effect white paper, wood shader", wood});
     return v;
   }();
   return list;
