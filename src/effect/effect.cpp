@@ -59,6 +59,7 @@ struct CompiledShader {
   std::vector<uint32_t> tokens;
   std::optional<shader::VsDeclaration> declaration;
   std::optional<shader::ShaderConstantTable> constants;
+  std::optional<hlsl::Preshader> preshader;  // run at each BeginPass / CommitChanges
   VertexShaderPtr vs;
   PixelShaderPtr ps;
 };
@@ -474,11 +475,8 @@ struct Effect::Impl {
         continue;
       }
       if (!d.isNumeric()) continue;
-      Value v = paramValue(*p);
-      if (c.cls == shader::ConstantClass::MatrixRows) v.cls = ParameterClass::MatrixRows;
-      else if (c.cls == shader::ConstantClass::MatrixColumns) v.cls = ParameterClass::MatrixColumns;
-      std::vector<Vec4> regs = registers(v);
-      if (regs.size() > size_t(c.registerCount)) regs.resize(size_t(c.registerCount));
+      const Value v = paramValue(*p);
+      const std::vector<Vec4> regs = constantRegisters(v, c);
       if (regs.empty()) continue;
       const uint32_t first = uint32_t(c.registerIndex), count = uint32_t(regs.size());
       switch (c.registerSet) {
@@ -505,6 +503,42 @@ struct Effect::Impl {
         }
         case shader::RegisterSet::Sampler: break;
       }
+    }
+    if (sh.preshader) runPreshader(dev, sh);
+  }
+
+  // A parameter's value in the registers a constant table entry gives it (matrices
+  // packed as the entry says).
+  static std::vector<Vec4> constantRegisters(Value v, const shader::ShaderConstant& c) {
+    if (c.cls == shader::ConstantClass::MatrixRows) v.cls = ParameterClass::MatrixRows;
+    else if (c.cls == shader::ConstantClass::MatrixColumns) v.cls = ParameterClass::MatrixColumns;
+    std::vector<Vec4> regs = registers(v);
+    if (regs.size() > size_t(c.registerCount)) regs.resize(size_t(c.registerCount));
+    return regs;
+  }
+
+  // The preshader's inputs are parameters (or, for a uniform no parameter names, its
+  // default value); its results go to the shader's float constants.
+  void runPreshader(Device& dev, const CompiledShader& sh) const {
+    const hlsl::Preshader& pre = *sh.preshader;
+    std::vector<float> input;
+    for (const shader::ShaderConstant& c : pre.inputs.constants) {
+      const size_t at = size_t(c.registerIndex) * 4, size = size_t(c.registerCount) * 4;
+      if (input.size() < at + size) input.resize(at + size, 0.0f);
+      const Param* p = findParam(c.name);
+      if (p && p->decl.desc.isNumeric()) {
+        const std::vector<Vec4> regs = constantRegisters(paramValue(*p), c);
+        for (size_t r = 0; r < regs.size(); ++r)
+          for (size_t k = 0; k < 4; ++k) input[at + 4 * r + k] = (&regs[r].x)[k];
+      } else if (c.defaultValue.size() == size) {
+        std::copy(c.defaultValue.begin(), c.defaultValue.end(), input.begin() + std::ptrdiff_t(at));
+      }
+    }
+    const std::vector<float> out = pre.run(input);
+    for (size_t i = 0; i < pre.outputRegisters.size(); ++i) {
+      const uint32_t reg = uint32_t(pre.outputRegisters[i]);
+      if (sh.vertex) dev.setVertexShaderConstantF(reg, &out[4 * i], 1);
+      else dev.setPixelShaderConstantF(reg, &out[4 * i], 1);
     }
   }
 
@@ -709,6 +743,7 @@ struct Effect::Impl {
     opts.entry = e.entry;
     opts.includeDirs = options.includeDirs;
     opts.compatibility = preReleaseDialect;
+    opts.preshaders = true;  // expressions of parameters run once per change, as fxc's effects did
     for (const auto& [name, value] : options.defines) opts.defines.push_back({name, value});
     for (const Expr& a : e.args) opts.entryArguments.push_back(argumentText(a));
     const bool vertexProfile = e.profile.rfind("vs", 0) == 0;
@@ -739,6 +774,7 @@ struct Effect::Impl {
     sh->vertex = vertex;
     sh->tokens = r.tokens;
     sh->constants = shader::readConstantTable(r.shader);
+    sh->preshader = r.preshader;
     makeRuntimeShader(*sh, e.where, what);
     compiled.emplace(key, sh);
     return sh;

@@ -1259,7 +1259,7 @@ class CodeGen {
     table.target = v_.name();
     table.versionToken = v_.token();
     for (const IrUniform& u : ir_.uniforms) {
-      if (!u.used) continue;
+      if (!u.used || u.preshaderOutput) continue;
       ConstantTable::Constant c;
       c.name = u.name;
       c.registerSet = ConstantTable::RegisterSet::Float4;

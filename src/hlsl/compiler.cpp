@@ -7,8 +7,10 @@
 #include <sstream>
 
 #include "hlsl/ir.h"
+#include "hlsl/constant_table.h"
 #include "hlsl/parser.h"
 #include "hlsl/preprocessor.h"
+#include "hlsl/preshader.h"
 #include "refx/shader/validator.h"
 
 namespace refx::hlsl {
@@ -29,6 +31,34 @@ bool parseProfile(const std::string& p, shader::Version& v) {
   for (const auto& [name, ver] : profiles)
     if (p == name) { v = ver; return true; }
   return false;
+}
+
+// The preshader as the effect runs it: its inputs as a constant table of their own
+// (the layout fxc gives a preshader), its outputs at the registers code generation chose.
+Preshader finishPreshader(const IrProgram& ir, const PreshaderExtraction& pre, const shader::Version& version) {
+  Preshader p;
+  p.program = pre.program;
+  ConstantTable table;
+  table.creator = kCreator;
+  table.target = version.name();
+  table.versionToken = version.token();
+  int next = 0;
+  for (int u : pre.inputUniforms) {
+    const IrUniform& uniform = ir.uniforms[size_t(u)];
+    ConstantTable::Constant c;
+    c.name = uniform.name;
+    c.registerSet = ConstantTable::RegisterSet::Float4;
+    c.registerIndex = next;
+    c.registerCount = uniform.registerCount;
+    c.type = uniform.type;
+    c.defaultValue = uniform.defaults;
+    next += uniform.registerCount;
+    table.constants.push_back(std::move(c));
+  }
+  const std::vector<uint32_t> words = table.encode();
+  if (auto decoded = shader::readConstantTable(std::span<const uint32_t>(words))) p.inputs = std::move(*decoded);
+  for (int u : pre.outputUniforms) p.outputRegisters.push_back(ir.uniforms[size_t(u)].firstRegister);
+  return p;
 }
 
 }  // namespace
@@ -87,6 +117,11 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
       foldConstants(ir);
       if (options.optimize) fuseMultiplyAdd(ir);
       removeDeadCode(ir);
+      PreshaderExtraction pre;
+      if (options.preshaders) {
+        pre = extractPreshader(ir);
+        removeDeadCode(ir);
+      }
       SourceLocation entryWhere{file, 0, 0};
       for (const auto& f : program.functions)
         if (f->name == options.entry) entryWhere = f->where;
@@ -107,6 +142,7 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
           result.shader = sh;
           result.tokens = shader::encode(sh);
           result.instructionSlots = slots.total();
+          if (pre.program) result.preshader = finishPreshader(ir, pre, version);
         }
       }
     }

@@ -80,6 +80,9 @@ struct IrUniform {
   bool used = false;
   int firstRegister = -1;  // assigned by the back end
   std::vector<float> defaults;  // per register, 4 floats each (from the initialiser)
+  // A register the preshader writes (an expression of uniforms computed on the CPU):
+  // placed like a uniform, absent from the constant table.
+  bool preshaderOutput = false;
 };
 
 struct IrSampler {

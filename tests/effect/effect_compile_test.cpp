@@ -10,6 +10,7 @@
 #include "pipeline/device_helpers.h"
 #include "refx/effect/effect.h"
 #include "refx/shader/constant_table.h"
+#include "refx/shader/validator.h"
 
 using namespace refx;
 using namespace refx::effect;
@@ -169,6 +170,36 @@ TEST(EffectCompile, CompiledShadersValidateByTheirVersion) {
   EXPECT_FALSE(v.ok);
   EXPECT_NE(v.reason.find("vs_2_0"), std::string::npos) << v.reason;
   EXPECT_TRUE(fx->validateTechnique(0, loadCapsProfile("dx9")).ok);
+}
+
+// Preshader: Tint * Intensity * 0.5 reads only parameters, so the CPU computes it at
+// BeginPass and the pixel shader is one mov from the register it lands in.
+// Tint (1, 0.5, 0.25, 1), Intensity 1: (0.5, 0.25, 0.125, 0.5) → (128, 64, 32, 128);
+// after SetFloat(Intensity, 2) and CommitChanges: (1, 0.5, 0.25, 1) → (255, 128, 64, 255).
+TEST(EffectCompile, PreshadersRunAtBeginPassAndCommitChanges) {
+  auto fx = Effect::fromText(R"(
+float4 Tint = {1, 0.5, 0.25, 1};
+float Intensity = 1;
+float4 VS(float4 p : POSITION) : POSITION { return p; }
+float4 PS() : COLOR { return Tint * Intensity * 0.5; }
+technique T { pass { VertexShader = compile vs_2_0 VS(); PixelShader = compile ps_2_0 PS(); CullMode = None; } }
+)",
+                             "preshader.fx");
+  ASSERT_TRUE(fx->diagnostics().empty()) << fx->diagnostics()[0].str();
+  auto dev = test::makeDevice(8, 8);
+  fx->begin(*dev, 0);
+  fx->beginPass(0);
+  // The pixel shader computes nothing: its one arithmetic instruction is the mov to oC0.
+  const shader::SlotCount slots = shader::countSlots(dev->state().pixelShader->decoded());
+  EXPECT_EQ(slots.total(), 1);
+  drawQuad(*dev);
+  EXPECT_EQ(test::pixel(*dev, 4, 4), 0x80804020u);
+  fx->setFloat(fx->parameterByName("Intensity"), 2);
+  fx->commitChanges();
+  drawQuad(*dev);
+  EXPECT_EQ(test::pixel(*dev, 4, 4), 0xffff8040u);
+  fx->endPass();
+  fx->end();
 }
 
 // ---- the seeds' HLSL effects on a flat quad --------------------------------------------

@@ -2,12 +2,16 @@
 // fxc did. Everything it produces passes refx's own validator for the profile.
 #pragma once
 #include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "refx/core/diagnostics.h"
 #include "refx/shader/bytecode.h"
+#include "refx/shader/constant_table.h"
 
 namespace refx::hlsl {
 
@@ -26,9 +30,32 @@ struct CompileOptions {
   // The pre-release dialect of the DirectX 9 white paper: vec3/vec4, len, frc,
   // sample1d/sample3d, volumetexture, a leading `fx.2.0` line.
   bool compatibility = false;
+  // Take the computations that read only uniforms out of the shader into a preshader,
+  // run on the CPU when the uniforms change (effects do; a plain shader has no one to
+  // run it).
+  bool preshaders = false;
   // Uniform arguments of the entry point (`compile ps_2_0 PS(3, true)` in effects),
   // as constant expressions in HLSL syntax, in parameter order.
   std::vector<std::string> entryArguments;
+};
+
+// Expressions of uniforms only, computed on the CPU once per change of the uniforms
+// instead of once per vertex or pixel (fxc's preshaders); the shader reads the results
+// from constant registers.
+class Preshader {
+ public:
+  struct Program;
+  // The uniforms it reads, laid out in its own input registers as a constant table.
+  shader::ShaderConstantTable inputs;
+  // The shader's float constant register each result goes to, one float4 each.
+  std::vector<int> outputRegisters;
+
+  // `inputRegisters` holds 4 floats per input register (as `inputs` lays them out; a
+  // short span reads zeros); returns 4 floats per output register.
+  std::vector<float> run(std::span<const float> inputRegisters) const;
+  int instructionCount() const;
+
+  std::shared_ptr<const Program> program;
 };
 
 struct CompileResult {
@@ -36,6 +63,7 @@ struct CompileResult {
   shader::Shader shader;         // decoded form of `tokens`
   std::vector<Diagnostic> diagnostics;
   int instructionSlots = 0;      // as the validator counts them
+  std::optional<Preshader> preshader;  // with CompileOptions::preshaders, when there is one
 
   bool ok() const { return !tokens.empty(); }
   // Every diagnostic in fxc's "file(line,col): error X3000: message" form, one per line.
