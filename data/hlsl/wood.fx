@@ -5,7 +5,7 @@
 // - line 55: the ';' missing after "return diffuse_color * dot(N, L)" is added;
 // - line 71: PS_INPUT's "vec3 Color : COLOR0" becomes vec4, because Wood reads
 //   v.Color.a (twice) and a vec3 has no .a.
-// refx fxc /Gec /T ps_2_0 /E Wood wood.fx  (63 instruction slots)
+// refx fxc /Gec /T ps_2_0 /E Wood wood.fx  (66 instruction slots: 2 texture, 64 arithmetic)
 fx.2.0
 
 //////////////////////////////////////////////////////////////////////////////

@@ -2148,6 +2148,11 @@ class Builder {
     }
     Comps cc = coord.comps;
     cc.resize(coordWidth);
+    // texld reads as many coordinates as the sampler has dimensions: a shorter lookup
+    // (the pre-release sample1d on a volume texture) reads zeros in the others, never
+    // whatever the register held before.
+    const size_t samplerCoords = s.dim == SamplerDim::Dim1D ? 1 : s.dim == SamplerDim::Dim2D ? 2 : 3;
+    while (o == IrOp::Tex && cc.size() < samplerCoords) cc.push_back(lit(0));
     IrInst inst;
     inst.op = o;
     inst.width = 4;
