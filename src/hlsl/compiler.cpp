@@ -115,6 +115,7 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
       // Optimisation passes, in order.
       propagateCopies(ir);
       foldConstants(ir);
+      mergeDuplicates(ir);
       if (options.optimize) fuseMultiplyAdd(ir);
       removeDeadCode(ir);
       PreshaderExtraction pre;

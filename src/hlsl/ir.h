@@ -125,6 +125,7 @@ IrProgram buildIr(const Program& program, const BuildOptions& options, Diagnosti
 // Optimisation passes over the IR (each small and named after what it does).
 void foldConstants(IrProgram& ir);
 void propagateCopies(IrProgram& ir);
+void mergeDuplicates(IrProgram& ir);
 void fuseMultiplyAdd(IrProgram& ir);
 void removeDeadCode(IrProgram& ir);
 

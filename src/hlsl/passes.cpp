@@ -1,5 +1,7 @@
 // IR optimisation passes. Each is one small function over the instruction list.
+#include <bit>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include "hlsl/ir.h"
@@ -111,6 +113,34 @@ void propagateCopies(IrProgram& ir) {
   }
   for (IrOutput& o : ir.outputs)
     for (IrPart& p : o.parts) resolvePart(p);
+}
+
+// An instruction that computes what an earlier one computed (the same operation on the
+// same sources, as copy propagation exposes them) is dropped for the earlier result.
+void mergeDuplicates(IrProgram& ir) {
+  std::vector<int> replacement(ir.regWidth.size(), -1);
+  auto resolve = [&](int& r) {
+    if (r >= 0 && replacement[size_t(r)] >= 0) r = replacement[size_t(r)];
+  };
+  std::map<std::vector<int>, int> seen;
+  for (IrInst& in : ir.code) {
+    for (int s = 0; s < in.srcCount; ++s) resolve(in.src[s].reg);
+    for (IrPart& p : in.parts) resolve(p.reg);
+    if (in.dst < 0 || in.op == IrOp::Kill) continue;
+    std::vector<int> key{int(in.op), in.width, int(in.saturate), in.sampler, in.index, in.srcCount};
+    for (int s = 0; s < in.srcCount; ++s) {
+      const IrSrc& src = in.src[s];
+      key.insert(key.end(), {src.reg, src.negate, src.absolute});
+      for (int c = 0; c < in.width; ++c) key.push_back(src.swizzle[size_t(c)]);
+    }
+    for (const IrPart& p : in.parts) key.insert(key.end(), {p.reg, p.component, std::bit_cast<int>(p.literal)});
+    if (in.op == IrOp::Constant)
+      for (int c = 0; c < in.width; ++c) key.push_back(std::bit_cast<int>(in.literal[size_t(c)]));
+    auto [it, added] = seen.emplace(std::move(key), in.dst);
+    if (!added) replacement[size_t(in.dst)] = it->second;
+  }
+  for (IrOutput& o : ir.outputs)
+    for (IrPart& p : o.parts) resolve(p.reg);
 }
 
 // add(mul(a, b), c) → mad(a, b, c) when the product has no other reader.
