@@ -318,6 +318,13 @@ void EffectScene::draw(Effect& fx, Device& device) {
     const effect::ParameterDesc& d = fx.parameterDesc(p);
     if (equalsNoCase(d.name, "BCLR") && d.isNumeric()) background = uint32_t(fx.getInt(p));
     std::string sem = semanticOf(d);
+    // DirectX SDK annotations: `float4 p : POSITION < string Object = "PointLight0"; >`
+    // names a light's position, DIRECTION with a light object its direction.
+    if (const effect::Annotation* obj = fx.annotationByName(fx.parameterAnnotations(p), "Object");
+        obj && toLower(obj->text).find("light") != std::string::npos) {
+      if (sem == "POSITION") sem = "LIGHTPOSITION";
+      if (sem == "DIRECTION") sem = "LIGHTDIRECTION";
+    }
     if (sem.empty()) continue;
     if (std::any_of(options_.sets.begin(), options_.sets.end(), [&](const auto& set) { return set.first == d.name; }))
       continue;  // the user's --set value stands
@@ -335,6 +342,10 @@ void EffectScene::draw(Effect& fx, Device& device) {
     }
     if (sem == "LIGHTVECTOR") {  // from the surface toward the light: the L of N.L
       fx.setVector(p, Vec4(kTowardLight, 0));
+      continue;
+    }
+    if (sem == "LIGHTPOSITION") {  // a point light as far out as the camera, toward the light
+      fx.setVector(p, Vec4(kTowardLight * length(kEye), 1));
       continue;
     }
     // WORLD, VIEW, PROJECTION and products, with INVERSE / TRANSPOSE suffixes.
