@@ -45,6 +45,57 @@ const d3dx::BrdfFactorization& brdfFit(int size) {
   return *fit;
 }
 
+// RacorX10's illumination map (diffspec.dds), indexed by u = N.L and v = N.H: the
+// diffuse value in RGB, the specular value v^16 in alpha.
+TexturePtr illuminationMap(int size) {
+  auto t = Texture::create2D(Format::A8R8G8B8, size, size, 1);
+  d3dx::fillTexture(*t, [](Vec2 p, Vec2) { return Vec4(p.x, p.x, p.x, std::pow(p.y, 16.0f)); });
+  return t;
+}
+
+// The earth normal map (as earthNormalMap makes it) with the height field's occlusion in
+// alpha, with mip maps.
+TexturePtr earthNormalOcclusionMap(int n) {
+  const TexturePtr height = d3dx::earthHeightMap(2 * n, n, 1);
+  const TexturePtr level0 = d3dx::computeNormalMap(*height, d3dx::CHANNEL_RED, 10.0f,
+                                                   d3dx::NORMALMAP_MIRROR_V | d3dx::NORMALMAP_COMPUTE_OCCLUSION);
+  TexturePtr out = Texture::create2D(Format::A8R8G8B8, 2 * n, n, 0);
+  std::copy_n(level0->data(0, 0), level0->dataSize(0, 0), out->data(0, 0));
+  out->generateMips();
+  out->markDirty();
+  return out;
+}
+
+// Sky and ground colors of the hemisphere samples (data/effects/hemisphere.fx).
+const Vec4 kSkyColor{0.55f, 0.7f, 1.0f, 1.0f};
+const Vec4 kGroundColor{0.35f, 0.25f, 0.15f, 1.0f};
+
+// The 2-hemisphere model's exact integral (seeds/000, "The actual integral is:
+// color = a*SkyColor + (1-a)*GroundColor, a = 1 - 0.5*sin(q) for q < 90, a = 0.5*sin(q)
+// for q > 90"), q the angle between the direction and +y.
+TexturePtr hemisphereIntegralCube(int size) {
+  auto t = Texture::createCube(Format::A8R8G8B8, size, 1);
+  d3dx::fillCubeTexture(*t, [](Vec3 d, Vec3) {
+    const Vec3 n = normalize(d);
+    const float sinQ = std::sqrt(std::max(0.0f, 1.0f - n.y * n.y));
+    const float a = n.y >= 0 ? 1.0f - 0.5f * sinQ : 0.5f * sinQ;
+    return Vec4(a * kSkyColor.x + (1 - a) * kGroundColor.x, a * kSkyColor.y + (1 - a) * kGroundColor.y,
+                a * kSkyColor.z + (1 - a) * kGroundColor.z, 1.0f);
+  });
+  return t;
+}
+
+// The teapot with the occluded fraction of each vertex's hemisphere in texture
+// coordinate z, where the seed's vertex hemisphere shader reads it (v7.z).
+d3dx::Mesh teapotWithOcclusion() {
+  const d3dx::Mesh t = d3dx::createTeapot(6);
+  d3dx::Mesh m = d3dx::cloneMeshFVF(t, d3dx::fvf::XYZ | d3dx::fvf::NORMAL | d3dx::fvf::tex(1) |
+                                           d3dx::fvf::texCoordSize(3, 0));
+  const std::vector<float> visible = d3dx::computeHemisphereVisibility(t);
+  for (uint32_t i = 0; i < m.vertexCount(); ++i) m.setTexCoord(i, 0, Vec4(0, 0, 1.0f - visible[i], 0));
+  return m;
+}
+
 Asset texture(std::string name, std::string description, int size, std::function<TexturePtr(int)> make) {
   return {std::move(name), std::move(description), size, std::move(make), nullptr};
 }
@@ -69,6 +120,14 @@ const std::vector<Asset>& assets() {
       texture("clouds", "cloud layer, white with alpha = cover (A8R8G8B8, 2N x N; --alpha-grey)", 256, [](int n) { return cloudMap(2 * n, n, 0); }),
       texture("environment", "sky for bump environment mapping (A8R8G8B8)", 256,
               [](int n) { return environmentMap(n, 0); }),
+      texture("earth-normal-occlusion",
+              "earth normal map, alpha = open fraction of the sky over each texel (ComputeNormalMap with "
+              "COMPUTE_OCCLUSION; A8R8G8B8, 2N x N)",
+              256, [](int n) { return earthNormalOcclusionMap(n); }),
+      texture("hemisphere-integral",
+              "hemisphere lighting's integral: a sky + (1 - a) ground, a = 1 - sin(q)/2 (q < 90) or sin(q)/2, "
+              "q from +y (cube, A8R8G8B8)",
+              32, [](int n) { return hemisphereIntegralCube(n); }),
       texture("normalization-cube", "normalization cube map, 0.5 + 0.5 n (cube, A8R8G8B8)", 64,
               [](int n) { return createNormalizationCubeMap(n); }),
       texture("checker", "8 x 8 checkerboard (A8R8G8B8)", 256, [](int n) { return checker(n, 8, 0); }),
@@ -79,6 +138,12 @@ const std::vector<Asset>& assets() {
               2048, [](int n) { return specularPowerTable(n, 16, 1); }),
       texture("specular-pow100", "effect paper LightEval: RGB = pow(v, 100), A = u (256 x 256)", 256,
               [](int n) { return specularPowerMap(n, n, 100, SpecularAlpha::U, 1); }),
+      texture("specular-table-2048-pow100",
+              "texdp3tex table of the effect paper's power: RGB = 0, A = pow(u, 100) (2048 x 1; --alpha-grey)", 2048,
+              [](int n) { return specularPowerTable(n, 100, 1); }),
+      texture("illumination-map",
+              "RacorX10 illumination map (diffspec.dds): RGB = u (N.L), A = pow(v, 16) (N.H^16) (256 x 256)", 256,
+              [](int n) { return illuminationMap(n); }),
       texture("attenuation-2d", "RacorX10 point light: RGB = x^2 + y^2, A = x^2 (256 x 256)", 256,
               [](int n) { return attenuationMap2D(n); }),
       texture("attenuation-1d", "point light z^2 alone: RGB = A = z^2 (256 x 1)", 256,
@@ -99,6 +164,9 @@ const std::vector<Asset>& assets() {
            [] { return createCylinder(0.5f, 0.5f, 1.5f, 24, 4); }),
       mesh("torus", "D3DXCreateTorus(0.25, 0.75, 16, 32), axis z", [] { return createTorus(0.25f, 0.75f, 16, 32); }),
       mesh("teapot", "the Utah teapot, 32 Bezier patches at 8 x 8 quads, y up", [] { return createTeapot(8); }),
+      mesh("teapot-occlusion",
+           "the teapot at 6 x 6 quads with its occluded hemisphere fraction in texture z (u, v = 0)",
+           [] { return teapotWithOcclusion(); }),
   };
   return list;
 }

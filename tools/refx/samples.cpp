@@ -433,8 +433,6 @@ const std::vector<Sample>& allSamples() {
   };
   static const std::vector<Sample> all = [] {
     std::vector<Sample> v = samples;
-    const auto& shaders = shaderSamples();
-    v.insert(v.end(), shaders.begin(), shaders.end());
     const auto& effects = effectSamples();
     v.insert(v.end(), effects.begin(), effects.end());
     return v;

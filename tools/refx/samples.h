@@ -25,11 +25,9 @@ struct Sample {
 };
 
 const std::vector<Sample>& allSamples();
-// The vertex and pixel shader samples (RacorX6-14, the per-pixel lighting column,
-// hemisphere lighting, the BRDF pair); allSamples() lists them after the others.
-const std::vector<Sample>& shaderSamples();
 // The seeds' examples as effect files (data/effects) drawn through the effect
-// framework; allSamples() lists them last.
+// framework (RacorX6-14, the per-pixel lighting column, hemisphere lighting, the BRDF
+// effect, the HLSL programs ...); allSamples() lists them last.
 const std::vector<Sample>& effectSamples();
 
 
