@@ -69,6 +69,8 @@ class Ps1xCodeGen {
     if (sink_.hasErrors()) return out;
     expandWholePowers();
     index();
+    mergeRepeatedTextureReads();
+    index();
     findModifierForms();
     findLerps();
     foldShiftsIntoProducers();
@@ -254,6 +256,23 @@ class Ps1xCodeGen {
       code.back().saturate = in.saturate;
     }
     ir_.code = std::move(code);
+  }
+
+  // The same texture read twice (the builder keeps every call) is one read: ps_1_x has
+  // one texture instruction per stage (per phase in ps_1_4).
+  void mergeRepeatedTextureReads() {
+    std::map<std::tuple<int, int, std::array<uint8_t, 4>, bool, bool, int>, int> first;
+    for (size_t i = 0; i < ir_.code.size(); ++i) {
+      const IrInst& in = ir_.code[i];
+      if (in.op != IrOp::Tex) continue;
+      const IrSrc& c = in.src[0];
+      auto [it, fresh] = first.emplace(std::make_tuple(in.sampler, c.reg, c.swizzle, c.negate, c.absolute, in.index), in.dst);
+      if (fresh) continue;
+      IrSrc same;
+      same.reg = it->second;
+      replaceUses(in.dst, same);
+      skip_.insert(int(i));
+    }
   }
 
   // ---- 2. modifiers ----------------------------------------------------------------------------

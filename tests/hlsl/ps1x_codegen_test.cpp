@@ -83,6 +83,22 @@ TEST(HlslPs1x, TextureModulatedByDiffuse) {
   }
 }
 
+// The same tex2D twice is one texture instruction (one per stage in ps_1_x).
+TEST(HlslPs1x, RepeatedTextureReadIsOneInstruction) {
+  const char* src = R"(
+    sampler2D s;
+    float4 main(float2 uv : TEXCOORD0, float4 d : COLOR0) : COLOR { return tex2D(s, uv) * d + tex2D(s, uv).a * 0.5; })";
+  for (const char* profile : {"ps_1_1", "ps_1_4"}) {
+    auto r = compilePs(src, profile);
+    ASSERT_TRUE(r.ok()) << profile << "\n" << r.messages();
+    EXPECT_EQ(sh::countSlots(r.shader).texture, 1) << listing(r);
+    ShaderRun run(r.shader);
+    run.input(kTC0, {0.25f, 0.5f, 0.0f, 0.5f}).input(kV0, {0.5f, 1.0f, 0.25f, 0.8f}).execute();
+    // t * d + t.a / 2 = (0.125, 0.5, 0, 0.4) + 0.25
+    expectNear(run.output(0), {0.375f, 0.75f, 0.25f, 0.65f});
+  }
+}
+
 // lerp(a, b, s) is one lrp with s first.
 TEST(HlslPs1x, LerpIsOneLrp) {
   const char* src = R"(
