@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "hlsl/codegen_ps1x.h"
 #include "hlsl/ir.h"
 #include "hlsl/constant_table.h"
 #include "hlsl/parser.h"
@@ -80,11 +81,6 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
     result.diagnostics = sink.all();
     return result;
   }
-  if (version.ps1x()) {
-    sink.error({file, 0, 0}, "X3501", "compiling HLSL for {} is not supported yet; use ps_2_0 or later", options.profile);
-    result.diagnostics = sink.all();
-    return result;
-  }
   PreprocessOptions pp;
   pp.defines = options.defines;
   pp.includeDirs = options.includeDirs;
@@ -126,7 +122,8 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
       SourceLocation entryWhere{file, 0, 0};
       for (const auto& f : program.functions)
         if (f->name == options.entry) entryWhere = f->where;
-      shader::Shader sh = generateCode(ir, kCreator, sink, entryWhere);
+      shader::Shader sh = version.ps1x() ? generateCodePs1x(ir, kCreator, sink, entryWhere)
+                                         : generateCode(ir, kCreator, sink, entryWhere);
       if (!sink.hasErrors()) {
         // Everything refx emits must pass refx's own validator for the profile.
         shader::SlotCount slots = shader::countSlots(sh);

@@ -45,6 +45,29 @@ TEST(HlslSeeds, CompileForTheArticlesProfiles) {
   }
 }
 
+// The pixel shaders that fit the DirectX 8 models compile for ps_1_4 and ps_1_1 (the
+// ambient one is one mov of a def, the diffuse one reads both vectors with a texture
+// instruction, dp3_sat and mad); the others need normalize, which ps_1_x cannot do.
+TEST(HlslSeeds, PixelShadersThatFitPs1x) {
+  for (const char* profile : {"ps_1_4", "ps_1_1"}) {
+    for (auto [file, slots] : {std::pair{"ambient.hlsl", 1}, {"diffuse.hlsl", 4}}) {
+      hlsl::CompileResult r = compileSeed(file, profile, "PS");
+      ASSERT_TRUE(r.ok()) << file << " " << profile << "\n" << r.messages();
+      EXPECT_TRUE(shader::validate(r.shader).empty()) << file << " " << profile;
+      EXPECT_EQ(r.instructionSlots, slots) << file << " " << profile;
+    }
+    for (const char* file : {"specular.hlsl", "self_shadow.hlsl", "bump.hlsl", "point_light.hlsl"}) {
+      hlsl::CompileResult r = compileSeed(file, profile, "PS");
+      EXPECT_FALSE(r.ok()) << file << " " << profile;
+      bool named = false;
+      for (const Diagnostic& d : r.diagnostics)
+        named |= d.code == "X4532" && d.message.find("normalize needs rsq") != std::string::npos &&
+                 d.message.find(profile) != std::string::npos;
+      EXPECT_TRUE(named) << file << " " << profile << "\n" << r.messages();
+    }
+  }
+}
+
 // Reviewed listing: the ambient pixel shader is one def and one mov, the vertex shader
 // four dp4 of the position with the columns of matWorldViewProj (column_major: c0..c3
 // hold the columns), as fxc compiles them.
@@ -226,6 +249,51 @@ TEST(HlslSeeds, SpecularIsPhongWithExponent8) {
     EXPECT_NEAR(c.r, sat(0.1f + diff + spec), 3.0f / 255) << x << "," << y;
     EXPECT_NEAR(c.g, sat(spec), 3.0f / 255) << x << "," << y;
     EXPECT_NEAR(c.b, sat(spec), 3.0f / 255) << x << "," << y;
+  }
+}
+
+// The ps_1_4 and ps_1_1 versions of the ambient and diffuse pixel shaders at the same
+// probes as ps_2_0. ps_1_1 reads the light and normal vectors with texcoord, which
+// clamps each coordinate to [0, 1]; ps_1_4's texcrd reads them as they are.
+TEST(HlslSeeds, AmbientAndDiffuseInPs1x) {
+  for (const char* profile : {"ps_1_4", "ps_1_1"}) {
+    SCOPED_TRACE(profile);
+    const bool clampedVectors = std::string(profile) == "ps_1_1";
+    auto ambientVs = compileSeed("ambient.hlsl", "vs_1_1", "VS");
+    auto ambientPs = compileSeed("ambient.hlsl", profile, "PS");
+    ASSERT_TRUE(ambientVs.ok() && ambientPs.ok()) << ambientVs.messages() << ambientPs.messages();
+    SphereScene a;
+    a.setMatrices(-1);
+    a.draw(ambientVs, ambientPs);
+    for (auto [x, y] : kProbes) {
+      Color4 c = a.at(x, y);  // return float4(0.5, 0.075, 0.075, 1.0)
+      EXPECT_NEAR(c.r, 0.5f, 1.0f / 255) << x << "," << y;
+      EXPECT_NEAR(c.g, 0.075f, 1.0f / 255) << x << "," << y;
+      EXPECT_NEAR(c.b, 0.075f, 1.0f / 255) << x << "," << y;
+    }
+
+    auto vs = compileSeed("diffuse.hlsl", "vs_1_1", "VS");
+    auto ps = compileSeed("diffuse.hlsl", profile, "PS");
+    ASSERT_TRUE(vs.ok() && ps.ok()) << vs.messages() << ps.messages();
+    SphereScene s;
+    s.setMatrices(4);  // matWorld follows matWorldViewProj: c4..c7
+    const Vec3 L = normalized(Vec3(0.5f, 0.6f, -0.62f));
+    const float light[4] = {L.x, L.y, L.z, 0};
+    s.dev->setVertexShaderConstantF(8, light, 1);  // vecLightDir: c8
+    s.draw(vs, ps);
+    for (auto [x, y] : kProbes) {
+      Vec3 n, l = L;
+      ASSERT_TRUE(SphereScene::surface(x, y, n));
+      if (clampedVectors) {
+        n = Vec3(sat(n.x), sat(n.y), sat(n.z));
+        l = Vec3(sat(l.x), sat(l.y), sat(l.z));
+      }
+      // red = 0.1 + saturate(N.L), green = blue = 0
+      Color4 c = s.at(x, y);
+      EXPECT_NEAR(c.r, sat(0.1f + sat(dot3(n, l))), 2.5f / 255) << x << "," << y;
+      EXPECT_NEAR(c.g, 0.0f, 1.0f / 255);
+      EXPECT_NEAR(c.b, 0.0f, 1.0f / 255);
+    }
   }
 }
 

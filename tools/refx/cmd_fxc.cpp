@@ -18,7 +18,7 @@ namespace {
 const char* kUsage =
     "usage: refx fxc /T <profile> [/E <entry>] [/Fo <file>] [/Fc <file>] [/Fh <file>] [/Vn <name>]\n"
     "                [/D <name>[=<value>]] [/I <dir>] [/Zpr | /Zpc] [/Gec] [/Od] [/nologo] <file>\n"
-    "  /T <profile>  vs_1_1 vs_2_0 vs_2_x vs_3_0 ps_2_0 ps_2_x ps_3_0\n"
+    "  /T <profile>  vs_1_1 vs_2_0 vs_2_x vs_3_0 ps_1_1 ps_1_2 ps_1_3 ps_1_4 ps_2_0 ps_2_x ps_3_0\n"
     "  /E <entry>    entry point (default main)\n"
     "  /Fo <file>    write the shader bytecode\n"
     "  /Fc <file>    write the assembly listing\n"
