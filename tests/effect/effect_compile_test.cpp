@@ -274,11 +274,28 @@ TEST(HlslSeedEffects, AmbientIsItsConstant) {
   EXPECT_EQ(renderLitQuad(*fx), 0xff801313u);
 }
 
+// The DirectX 8 fallbacks compute the same colour: ps_1_1 and ps_1_4 constants hold
+// (0.5, 0.075, 0.075, 1) exactly in refx's exact precision model.
+TEST(HlslSeedEffects, AmbientFallbacksForDirectX8) {
+  for (const char* technique : {"Ambient_ps_1_4", "Ambient_ps_1_1"}) {
+    auto fx = lightingEffect("hlsl_ambient.fx", {});
+    fx->setTechnique(fx->techniqueByName(technique));
+    EXPECT_EQ(renderLitQuad(*fx), 0xff801313u) << technique;
+  }
+}
+
 // Diffuse: ambient (0.1, 0, 0, 1) + (1, 0, 0, 1) * saturate(L.N) with L = (0, 0.6, -0.8),
 // N = (0, 0, -1): L.N = 0.8 → (0.9, 0, 0, 1.8 → 1) = (229.5, 0, 0, 255).
 TEST(HlslSeedEffects, DiffuseIsAmbientPlusNDotL) {
   auto fx = lightingEffect("hlsl_diffuse.fx", Vec4(0, 0.6f, -0.8f, 0));
   expectColor(renderLitQuad(*fx), 230, 0, 0, 255);
+  // ps_1_4 reads the vectors with texcrd (range ±8): the same 0.9.
+  fx->setTechnique(fx->techniqueByName("Diffuse_ps_1_4"));
+  expectColor(renderLitQuad(*fx), 230, 0, 0, 255);
+  // ps_1_1's texcoord clamps to [0, 1]: L = (0, 0.6, 0), N = (0, 0, 0), so N.L = 0 and
+  // only the ambient 0.1 is left (25.5 → 26).
+  fx->setTechnique(fx->techniqueByName("Diffuse_ps_1_1"));
+  expectColor(renderLitQuad(*fx), 26, 0, 0, 255);
 }
 
 // Specular: diff = N.L = 0.8; R = normalize(2 * 0.8 * N - L) = (0, -0.6, -0.8); R.V with

@@ -515,8 +515,11 @@ constexpr Expected kSeedEffects[] = {
     {"bump_earth.fx", {"BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "BumpEnvMap", "NoBump",
                        "BumpEnvMap", "NoBump"}},
     // The HLSL lighting programs: vs_1_1 with ps_2_0, as the article compiles them.
-    {"hlsl_ambient.fx", {"Ambient", "Ambient", "Ambient", "", "", "", "", "", ""}},
-    {"hlsl_diffuse.fx", {"Diffuse", "Diffuse", "Diffuse", "", "", "", "", "", ""}},
+    // ambient and diffuse fit ps_1_4 and ps_1_1 too: DirectX 8 profiles run those.
+    {"hlsl_ambient.fx", {"Ambient", "Ambient", "Ambient", "Ambient_ps_1_4", "Ambient_ps_1_1", "Ambient_ps_1_1", "",
+                         "", ""}},
+    {"hlsl_diffuse.fx", {"Diffuse", "Diffuse", "Diffuse", "Diffuse_ps_1_4", "Diffuse_ps_1_1", "Diffuse_ps_1_1", "",
+                         "", ""}},
     {"hlsl_specular.fx", {"Specular", "Specular", "Specular", "", "", "", "", "", ""}},
     {"hlsl_self_shadow.fx", {"SelfShadow", "SelfShadow", "SelfShadow", "", "", "", "", "", ""}},
     {"hlsl_bump.fx", {"Bump", "Bump", "Bump", "", "", "", "", "", ""}},
