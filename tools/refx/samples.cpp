@@ -1,8 +1,7 @@
-// The built-in samples of the DX6/DX7 generation (seeds/000: "Hardware Shading with
-// Direct3D"): bump-environment-mapped earth, DOT3 per-pixel diffuse with its emboss
-// fallback, and the two multi-pass blends later used by RacorX10/11. Per-vertex
-// values that the seeds compute in vertex shaders are computed here on the CPU, as a
-// DX6/DX7 application did.
+// The built-in samples that are not effects: the two multi-pass blends later used by
+// RacorX10/11 on a simple scene, and the D3DX shapes with fixed-function lighting. The
+// seeds' examples themselves are effect files (samples_effects.cpp), whose techniques
+// are chosen by validation.
 #include "samples.h"
 
 #include <cmath>
@@ -26,11 +25,6 @@ constexpr float kPi = 3.14159265358979f;
 
 // Assets are made once per process and shared by the samples.
 struct Assets {
-  TexturePtr earthColor = d3dx::earthColorMap(512, 256, 0);
-  TexturePtr earthHeight = d3dx::earthHeightMap(512, 256, 0);
-  TexturePtr earthBump = d3dx::earthBumpMap(512, 256, 1);
-  TexturePtr earthNormal = d3dx::earthNormalMap(512, 256, 1);
-  TexturePtr envMap = d3dx::environmentMap(256, 1);
   TexturePtr brick = d3dx::brick(256, 0);
   TexturePtr attenuation = makeAttenuationMap(64);
 
@@ -61,225 +55,12 @@ void linearSampling(Device& dev, int sampler, bool mips) {
   dev.setSamplerState(sampler, SAMP_MIPFILTER, mips ? 2 : 0);
 }
 
-// Camera looking at the origin from -z, 45 degree field of view.
-void earthCamera(Device& dev, Matrix& world, Matrix& view) {
-  const Texture& rt = *dev.renderTarget();
-  world = matrixRotationY(2.2f) * matrixRotationX(0.35f);
-  view = matrixLookAtLH({0, 0, -3.0f}, {0, 0, 0}, {0, 1, 0});
-  dev.setTransform(TS_WORLD, world);
-  dev.setTransform(TS_VIEW, view);
-  dev.setTransform(TS_PROJECTION,
-                   matrixPerspectiveFovLH(kPi / 4, float(rt.width()) / float(rt.height()), 0.1f, 100.0f));
-  dev.setRenderState(RS_ZENABLE, ZB_TRUE);
-}
-
 std::string describe(const ValidationResult& v) {
   return v.ok ? fmt::format("valid ({} pass{})", v.passes, v.passes == 1 ? "" : "es") : v.reason;
 }
 
 // Direction toward the light, world space.
 const Vec3 kLightDir = normalize(Vec3{-0.6f, 0.5f, -0.7f});
-
-// ---------------------------------------------------------------- DX6 bump earth
-SampleResult renderBumpEarth(Device& dev) {
-  SampleResult r;
-  const Assets& a = assets();
-  Matrix world, view;
-  earthCamera(dev, world, view);
-  // BUMPVERTEX: position, normal, set 0 = environment-map coordinates, set 1 = earth (u,v).
-  d3dx::Mesh m = d3dx::cloneMeshFVF(d3dx::createTexturedSphere(1.0f, 48, 24),
-                                    fvf::XYZ | fvf::NORMAL | fvf::tex(2));
-  const Matrix worldView = world * view;
-  for (uint32_t i = 0; i < m.vertexCount(); ++i) {
-    const Vec4 uv = m.texCoord(i, 1 - 1);  // cloned set 0 holds the earth (u,v)
-    const Vec3 n = normalize(transformNormal(m.normal(i), worldView));
-    m.setTexCoord(i, 1, uv.x, uv.y);
-    // Sphere-map style lookup from the camera-space normal, recomputed per frame by
-    // the original sample.
-    m.setTexCoord(i, 0, 0.5f + 0.5f * n.x, 0.5f - 0.5f * n.y);
-  }
-  bindMesh(dev, m);
-  Light l;
-  l.type = LIGHT_DIRECTIONAL;
-  l.diffuse = {1, 1, 1, 1};
-  l.direction = -kLightDir;
-  dev.setLight(0, l);
-  dev.lightEnable(0, true);
-  Material mat;
-  mat.diffuse = {1, 1, 1, 1};
-  mat.ambient = {1, 1, 1, 1};
-  dev.setMaterial(mat);
-  dev.setRenderState(RS_AMBIENT, 0xff202020);
-  dev.setRenderState(RS_WRAP0, 3);  // D3DWRAP_U | D3DWRAP_V, as the listing sets it
-
-  dev.setTexture(0, a.earthColor);
-  dev.setTextureStageState(0, TSS_TEXCOORDINDEX, 1);
-  dev.setTextureStageState(0, TSS_COLOROP, TOP_MODULATE);
-  dev.setTextureStageState(0, TSS_COLORARG1, TA_TEXTURE);
-  dev.setTextureStageState(0, TSS_COLORARG2, TA_DIFFUSE);
-  dev.setTexture(1, a.earthBump);
-  dev.setTextureStageState(1, TSS_TEXCOORDINDEX, 1);
-  dev.setTextureStageState(1, TSS_COLOROP, TOP_BUMPENVMAP);
-  dev.setTextureStageState(1, TSS_COLORARG1, TA_TEXTURE);
-  dev.setTextureStageState(1, TSS_COLORARG2, TA_CURRENT);
-  dev.setTextureStageState(1, TSS_BUMPENVMAT00, floatBits(0.5f));
-  dev.setTextureStageState(1, TSS_BUMPENVMAT01, floatBits(0.0f));
-  dev.setTextureStageState(1, TSS_BUMPENVMAT10, floatBits(0.0f));
-  dev.setTextureStageState(1, TSS_BUMPENVMAT11, floatBits(0.5f));
-  dev.setTextureStageState(1, TSS_BUMPENVLSCALE, floatBits(4.0f));
-  dev.setTextureStageState(1, TSS_BUMPENVLOFFSET, floatBits(0.0f));
-  dev.setTexture(2, a.envMap);
-  dev.setTextureStageState(2, TSS_TEXCOORDINDEX, 0);
-  dev.setTextureStageState(2, TSS_COLOROP, TOP_ADD);
-  dev.setTextureStageState(2, TSS_COLORARG1, TA_TEXTURE);
-  dev.setTextureStageState(2, TSS_COLORARG2, TA_CURRENT);
-  for (int s = 0; s < 3; ++s) linearSampling(dev, s, s == 0);
-
-  const ValidationResult v = dev.validate();
-  r.validation = describe(v);
-  if (v.ok) {
-    r.technique = "MODULATE(earth, diffuse) / BUMPENVMAP(bump) / ADD(env map, current)";
-  } else {
-    // Fallback: no dependent read; the environment map is added unbumped.
-    r.technique = "fallback: MODULATE(earth, diffuse) / ADD(env map, current)";
-    dev.setTexture(1, a.envMap);
-    dev.setTextureStageState(1, TSS_TEXCOORDINDEX, 0);
-    dev.setTextureStageState(1, TSS_COLOROP, TOP_ADD);
-    dev.setTextureStageState(2, TSS_COLOROP, TOP_DISABLE);
-    dev.setTexture(2, nullptr);
-    r.notes.push_back("fallback validation: " + describe(dev.validate()));
-  }
-  drawMesh(dev, m);
-  return r;
-}
-
-// ---------------------------------------------------------------- DOT3 and emboss
-// Light direction in each vertex's tangent space (T = dP/du, B = dP/dv, N).
-struct TangentLight {
-  Vec3 l;
-};
-
-std::vector<Vec3> tangentSpaceLight(const d3dx::Mesh& sphere, const Matrix& world) {
-  Matrix inv;
-  if (!inverse(world, inv)) inv = Matrix::identity();
-  const Vec3 lObj = normalize(transformNormal(kLightDir, inv));
-  std::vector<Vec3> out(sphere.vertexCount());
-  for (uint32_t i = 0; i < sphere.vertexCount(); ++i) {
-    const Vec3 n = sphere.normal(i);
-    const Vec4 t4 = sphere.texCoord(i, 1);
-    const Vec3 t = normalize({t4.x, t4.y, t4.z});
-    const Vec3 b = cross(n, t);  // points toward +v (south) on the earth sphere
-    out[i] = {dot(lObj, t), dot(lObj, b), dot(lObj, n)};
-  }
-  return out;
-}
-
-D3DColor biasedColor(Vec3 v, float alpha = 1.0f) {
-  return colorToD3D({0.5f + 0.5f * v.x, 0.5f + 0.5f * v.y, 0.5f + 0.5f * v.z, alpha});
-}
-
-void setupDot3(Device& dev, const d3dx::Mesh& sphere, const Matrix& world, d3dx::Mesh& out) {
-  const Assets& a = assets();
-  const auto lt = tangentSpaceLight(sphere, world);
-  out = d3dx::cloneMeshFVF(sphere, fvf::XYZ | fvf::DIFFUSE | fvf::tex(1));
-  for (uint32_t i = 0; i < out.vertexCount(); ++i) out.setDiffuse(i, biasedColor(lt[i]));
-  bindMesh(dev, out);
-  dev.setRenderState(RS_LIGHTING, 0);
-  // ColorOp[0] = DotProduct3(Texture, Diffuse); ColorOp[1] = Modulate(Texture, Current)
-  dev.setTexture(0, a.earthNormal);
-  dev.setTextureStageState(0, TSS_COLOROP, TOP_DOTPRODUCT3);
-  dev.setTextureStageState(0, TSS_COLORARG1, TA_TEXTURE);
-  dev.setTextureStageState(0, TSS_COLORARG2, TA_DIFFUSE);
-  dev.setTexture(1, a.earthColor);
-  dev.setTextureStageState(1, TSS_TEXCOORDINDEX, 0);
-  dev.setTextureStageState(1, TSS_COLOROP, TOP_MODULATE);
-  dev.setTextureStageState(1, TSS_COLORARG1, TA_TEXTURE);
-  dev.setTextureStageState(1, TSS_COLORARG2, TA_CURRENT);
-  dev.setTextureStageState(1, TSS_ALPHAOP, TOP_SELECTARG1);
-  dev.setTextureStageState(1, TSS_ALPHAARG1, TA_CURRENT);
-  linearSampling(dev, 0, false);
-  linearSampling(dev, 1, true);
-}
-
-// Emboss: SelectArg1(height) then AddSigned(height shifted toward the light |
-// COMPLEMENT, current) = 0.5 + h(t0) - h(t1); a second pass multiplies the lit color
-// map in with DESTCOLOR/SRCCOLOR (2 x src x dst, the brightening the text suggests).
-std::vector<std::string> renderEmboss(Device& dev, const d3dx::Mesh& sphere, const Matrix& world) {
-  const Assets& a = assets();
-  std::vector<std::string> validations;
-  const auto lt = tangentSpaceLight(sphere, world);
-  d3dx::Mesh m = d3dx::cloneMeshFVF(sphere, fvf::XYZ | fvf::DIFFUSE | fvf::tex(2));
-  const float offset = 2.0f / 512.0f;  // c24: shift of two texels of the height map
-  for (uint32_t i = 0; i < m.vertexCount(); ++i) {
-    const Vec4 uv = m.texCoord(i, 0);
-    m.setTexCoord(i, 1, uv.x - lt[i].x * offset, uv.y - lt[i].y * offset);
-    const float ndotl = std::max(0.0f, lt[i].z);  // dp3 oD0, v3, c12
-    m.setDiffuse(i, colorToD3D({ndotl, ndotl, ndotl, 1}));
-  }
-  bindMesh(dev, m);
-  dev.setRenderState(RS_LIGHTING, 0);
-  dev.setTexture(0, a.earthHeight);
-  dev.setTextureStageState(0, TSS_TEXCOORDINDEX, 0);
-  dev.setTextureStageState(0, TSS_COLOROP, TOP_SELECTARG1);
-  dev.setTextureStageState(0, TSS_COLORARG1, TA_TEXTURE);
-  dev.setTexture(1, a.earthHeight);
-  dev.setTextureStageState(1, TSS_TEXCOORDINDEX, 1);
-  dev.setTextureStageState(1, TSS_COLOROP, TOP_ADDSIGNED);
-  dev.setTextureStageState(1, TSS_COLORARG1, TA_TEXTURE | TA_COMPLEMENT);
-  dev.setTextureStageState(1, TSS_COLORARG2, TA_CURRENT);
-  dev.setTextureStageState(2, TSS_COLOROP, TOP_DISABLE);
-  linearSampling(dev, 0, true);
-  linearSampling(dev, 1, true);
-  validations.push_back("pass 1 (emboss): " + describe(dev.validate()));
-  drawMesh(dev, m);
-
-  // Pass 2: color map lit by the per-vertex N.L, blended 2 x src x dst.
-  dev.setTexture(0, a.earthColor);
-  dev.setTextureStageState(0, TSS_COLOROP, TOP_MODULATE);
-  dev.setTextureStageState(0, TSS_COLORARG1, TA_TEXTURE);
-  dev.setTextureStageState(0, TSS_COLORARG2, TA_DIFFUSE);
-  dev.setTextureStageState(1, TSS_COLOROP, TOP_DISABLE);
-  dev.setTexture(1, nullptr);
-  dev.setRenderState(RS_ALPHABLENDENABLE, 1);
-  dev.setRenderState(RS_SRCBLEND, BLEND_DESTCOLOR);
-  dev.setRenderState(RS_DESTBLEND, BLEND_SRCCOLOR);
-  dev.setRenderState(RS_ZFUNC, CMP_EQUAL);
-  validations.push_back("pass 2 (color, DESTCOLOR/SRCCOLOR): " + describe(dev.validate()));
-  drawMesh(dev, m);
-  return validations;
-}
-
-SampleResult renderDot3(Device& dev) {
-  SampleResult r;
-  Matrix world, view;
-  earthCamera(dev, world, view);
-  const d3dx::Mesh sphere = d3dx::createTexturedSphere(1.0f, 48, 24);
-  d3dx::Mesh m;
-  setupDot3(dev, sphere, world, m);
-  const ValidationResult v = dev.validate();
-  if (v.ok) {
-    r.technique = "DOTPRODUCT3(normal map, diffuse = light vector) / MODULATE(color map, current)";
-    r.validation = describe(v);
-    drawMesh(dev, m);
-    return r;
-  }
-  r.technique = "fallback: emboss (SELECTARG1 height / ADDSIGNED height|COMPLEMENT, 2 passes)";
-  r.validation = "DOT3 technique: " + v.reason;
-  dev.setTextureStageState(1, TSS_ALPHAOP, TOP_DISABLE);
-  r.notes = renderEmboss(dev, sphere, world);
-  return r;
-}
-
-SampleResult renderEmbossSample(Device& dev) {
-  SampleResult r;
-  Matrix world, view;
-  earthCamera(dev, world, view);
-  const d3dx::Mesh sphere = d3dx::createTexturedSphere(1.0f, 48, 24);
-  r.technique = "emboss (SELECTARG1 height / ADDSIGNED height|COMPLEMENT, 2 passes)";
-  r.notes = renderEmboss(dev, sphere, world);
-  r.validation = r.notes.front();
-  return r;
-}
 
 // ---------------------------------------------------------------- multi-pass blends
 // A brick floor seen in perspective, lit by a point light through RacorX10's
@@ -418,12 +199,6 @@ SampleResult renderShapes(Device& dev) {
 
 const std::vector<Sample>& allSamples() {
   static const std::vector<Sample> samples = {
-      {"dx6-bump-earth", "Specular bump-mapped earth: MODULATE / BUMPENVMAP / ADD",
-       "seeds/000 \"DirectX 6 Multi-Texture\" listing", renderBumpEarth},
-      {"dot3-diffuse", "Per-pixel diffuse with D3DTOP_DOTPRODUCT3 (emboss fallback)",
-       "seeds/000 per-pixel lighting: DOTPRODUCT3 fallback", renderDot3},
-      {"emboss", "Emboss bump mapping: SELECTARG1, ADDSIGNED with COMPLEMENT",
-       "seeds/000 per-pixel lighting: emboss fallback", renderEmbossSample},
       {"multipass-modulate", "Two passes: SRCBLEND ZERO / DESTBLEND SRCCOLOR (attenuation map)",
        "the RacorX10 blend on a simple scene", [](Device& d) { return renderMultipass(d, false); }},
       {"multipass-add", "Three passes adding a highlight with ONE/ONE",
