@@ -59,23 +59,32 @@ int runValidateEffect(const ValidateOptions& o) {
   size_t nameWidth = 9;
   for (effect::Handle t = 0; t < fx->techniqueCount(); ++t)
     nameWidth = std::max(nameWidth, fx->techniqueDesc(t).name.size());
-  std::printf("%-*s", int(nameWidth), "technique");
-  for (const CapsProfile& c : profiles) std::printf("  %s", c.name.c_str());
-  std::printf("\n");
+  // A column is as wide as its profile's name or "valid", whichever is longer; lines
+  // end without padding.
+  auto columnWidth = [](const CapsProfile& c) { return std::max<size_t>(c.name.size(), 5); };
+  auto printRow = [&](const std::string& first, const std::vector<std::string>& cells) {
+    std::string line = fmt::format("{:<{}}", first, nameWidth);
+    for (size_t i = 0; i < cells.size(); ++i) line += fmt::format("  {:<{}}", cells[i], columnWidth(profiles[i]));
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    std::printf("%s\n", line.c_str());
+  };
+  std::vector<std::string> header;
+  for (const CapsProfile& c : profiles) header.push_back(c.name);
+  printRow("technique", header);
   std::vector<std::string> reasons;
   for (effect::Handle t = 0; t < fx->techniqueCount(); ++t) {
     const std::string& name = fx->techniqueDesc(t).name;
-    std::printf("%-*s", int(nameWidth), name.c_str());
     // A technique with an error in the file fails everywhere for that one reason.
     if (!fx->techniqueDesc(t).brokenReason.empty())
       reasons.push_back(fmt::format("{} on every profile: {}", name, fx->techniqueDesc(t).brokenReason));
+    std::vector<std::string> cells;
     for (const CapsProfile& c : profiles) {
       const effect::TechniqueValidation v = fx->validateTechnique(t, c);
-      std::printf("  %-*s", int(c.name.size()), v.ok ? "valid" : "-");
+      cells.push_back(v.ok ? "valid" : "-");
       if (!v.ok && fx->techniqueDesc(t).brokenReason.empty())
         reasons.push_back(fmt::format("{} on {}: {}", name, c.name, v.reason));
     }
-    std::printf("\n");
+    printRow(name, cells);
   }
   for (const std::string& r : reasons) std::printf("  %s\n", r.c_str());
   return hadErrors ? 1 : 0;
