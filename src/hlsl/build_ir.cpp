@@ -243,8 +243,6 @@ class Builder {
       case IrOp::Exp2: return std::exp2(a);
       case IrOp::Log2: return std::log2(std::fabs(a));
       case IrOp::Pow: return std::pow(std::fabs(a), b);
-      case IrOp::Sin: return std::sin(a);
-      case IrOp::Cos: return std::cos(a);
       default: return 0;
     }
   }
@@ -252,7 +250,7 @@ class Builder {
   // Emits a component-wise op of `width` components; args are already `width` wide.
   Comps op(IrOp o, int width, std::initializer_list<Comps> args, bool saturate = false) {
     std::vector<Comps> a(args);
-    bool foldable = o != IrOp::Dsx && o != IrOp::Dsy && o != IrOp::Kill && o < IrOp::Tex;
+    bool foldable = o != IrOp::Dsx && o != IrOp::Dsy && o != IrOp::Kill && o != IrOp::SinCos && o < IrOp::Tex;
     bool literal = foldable;
     for (const Comps& x : a)
       if (!allLiteral(x)) literal = false;
@@ -1656,6 +1654,49 @@ class Builder {
     return scale == 1 ? l : op(IrOp::Mul, n, {l, Comps(n, lit(scale))});
   }
 
+  // sin and cos of each component (first: sin, second: cos). The argument is reduced to
+  // [-pi, pi) once for the whole vector: r = frc(x / 2pi + 0.5) * 2pi - pi, which differs
+  // from x by a whole number of turns. SM2+ then runs one sincos per component (cos in .x,
+  // sin in .y), shared by sin, cos, tan and sincos of the same value. vs_1_1 has no
+  // sincos: a series in the half angle h = r / 2 in [-pi/2, pi/2), as fxc lowers it:
+  //   sin h = h (1 - h^2/3! + h^4/5! - h^6/7! + h^8/9!)   (next term h^11/11! < 3.6e-6)
+  //   cos h = 1 - h^2/2! + h^4/4! - h^6/6! + h^8/8!       (next term h^10/10! < 2.6e-5)
+  //   sin r = 2 sin h cos h, cos r = 1 - 2 sin^2 h.
+  std::pair<Comps, Comps> sinCosOf(const Comps& a) {
+    int n = int(a.size());
+    if (allLiteral(a)) {
+      Comps s, c;
+      for (const Comp& k : a) { s.push_back(lit(std::sin(k.k))); c.push_back(lit(std::cos(k.k))); }
+      return {s, c};
+    }
+    auto splat = [&](float v) { return Comps(n, lit(v)); };
+    Comps turns = op(IrOp::Frc, n, {op(IrOp::Mad, n, {a, splat(0.159154943f), splat(0.5f)})});
+    if (opt_.version.major >= 2) {
+      Comps r = op(IrOp::Mad, n, {turns, splat(6.28318548f), splat(-3.14159274f)});
+      Comps s, c;
+      for (int i = 0; i < n; ++i) {
+        Comps sc = op(IrOp::SinCos, 2, {Comps{r[i]}});
+        c.push_back(sc[0]);
+        s.push_back(sc[1]);
+      }
+      return {s, c};
+    }
+    Comps h = op(IrOp::Mad, n, {turns, splat(3.14159274f), splat(-1.57079637f)});
+    Comps h2 = op(IrOp::Mul, n, {h, h});
+    auto series = [&](std::initializer_list<float> k) {  // highest power first
+      auto it = k.begin();
+      Comps p = splat(*it++);
+      for (; it != k.end(); ++it) p = op(IrOp::Mad, n, {p, h2, splat(*it)});
+      return p;
+    };
+    Comps sinH = op(IrOp::Mul, n, {h, series({1 / 362880.0f, -1 / 5040.0f, 1 / 120.0f, -1 / 6.0f, 1.0f})});
+    Comps cosH = series({1 / 40320.0f, -1 / 720.0f, 1 / 24.0f, -0.5f, 1.0f});
+    Comps sinH2 = op(IrOp::Add, n, {sinH, sinH});  // 2 sin h
+    Comps s = op(IrOp::Mul, n, {sinH2, cosH});
+    Comps c = op(IrOp::Mad, n, {negate(sinH2), sinH, splat(1.0f)});
+    return {s, c};
+  }
+
   // Polynomial atan on [-1, 1] scaled to the full range (max error ~1e-5).
   Comps atanOf(const Comps& y, const Comps* x) {
     int n = int(y.size());
@@ -1721,11 +1762,13 @@ class Builder {
     if (name == "log") return unaryFloat([&](const Comps& a) { return logOf(a, 0.69314718f); });
     if (name == "log2") return unaryFloat([&](const Comps& a) { return logOf(a, 1); });
     if (name == "log10") return unaryFloat([&](const Comps& a) { return logOf(a, 0.30103f); });
-    if (name == "sin") return unaryFloat([&](const Comps& a) { return scalarOp(IrOp::Sin, a); });
-    if (name == "cos") return unaryFloat([&](const Comps& a) { return scalarOp(IrOp::Cos, a); });
+    if (name == "sin") return unaryFloat([&](const Comps& a) { return sinCosOf(a).first; });
+    if (name == "cos") return unaryFloat([&](const Comps& a) { return sinCosOf(a).second; });
     if (name == "tan") return unaryFloat([&](const Comps& a) {
+      // sin / cos from one shared sincos per component
       int n = int(a.size());
-      return op(IrOp::Mul, n, {scalarOp(IrOp::Sin, a), scalarOp(IrOp::Rcp, scalarOp(IrOp::Cos, a))});
+      auto [sn, cs] = sinCosOf(a);
+      return op(IrOp::Mul, n, {sn, scalarOp(IrOp::Rcp, cs)});
     });
     if (name == "sinh" || name == "cosh" || name == "tanh") return unaryFloat([&](const Comps& a) {
       int n = int(a.size());
@@ -1982,7 +2025,7 @@ class Builder {
     if (name == "sincos") {
       if (!expectArgs(e, args, 3)) return errorValue();
       Value a = floatOf(args[0], at);
-      Comps s = scalarOp(IrOp::Sin, a.comps), c = scalarOp(IrOp::Cos, a.comps);
+      auto [s, c] = sinCosOf(a.comps);
       LValue ls = lvalue(*e.args[1]), lc = lvalue(*e.args[2]);
       if (ls.var) writeLValue(ls, convert(Value{a.type, s, true}, ls.type, at).comps, at);
       if (lc.var) writeLValue(lc, convert(Value{a.type, c, true}, lc.type, at).comps, at);

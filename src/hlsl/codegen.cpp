@@ -313,14 +313,11 @@ class CodeGen {
     return r;
   }
 
-  // sincos writes .x (cos) and .y (sin): those results live in that component.
+  // sincos writes .x (cos) and .y (sin) of its own register.
   void placeSpecialResults() {
-    for (const IrInst& in : ir_.code) {
-      if (in.op == IrOp::Sin && sincosAvailable()) { loc_[in.dst].map = {1, 1, 1, 1}; fixedMap_.insert(in.dst); }
-      if (in.op == IrOp::Cos && sincosAvailable()) { loc_[in.dst].map = {0, 0, 0, 0}; fixedMap_.insert(in.dst); }
-    }
+    for (const IrInst& in : ir_.code)
+      if (in.op == IrOp::SinCos) fixedMap_.insert(in.dst);
   }
-  bool sincosAvailable() const { return v_.major >= 2; }
 
   // ---- 2. coalescing ---------------------------------------------------------------------------
   // Ops whose destination may land in any component mapping.
@@ -330,7 +327,7 @@ class CodeGen {
     switch (ir_.code[d].op) {
       case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: case IrOp::Combine: case IrOp::Kill:
       case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad:
-      case IrOp::Nrm: case IrOp::Crs: case IrOp::Sin: case IrOp::Cos: case IrOp::Frc:
+      case IrOp::Nrm: case IrOp::Crs: case IrOp::SinCos: case IrOp::Frc:
         return false;
       default:
         return true;
@@ -660,7 +657,7 @@ class CodeGen {
           push(Opcode::Exp, dst(d, 1, in.saturate), {vsrc(t, {0, 0, 0, 0})}, Shape::Scalar);
         }
         return;
-      case IrOp::Sin: case IrOp::Cos: sinCos(in); return;
+      case IrOp::SinCos: sinCos(in); return;
       case IrOp::Dsx: push(Opcode::Dsx, dst(d, w, in.saturate), {src(in.src[0])}); return;
       case IrOp::Dsy: push(Opcode::Dsy, dst(d, w, in.saturate), {src(in.src[0])}); return;
       case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad: {
@@ -680,11 +677,22 @@ class CodeGen {
         return;
       }
       case IrOp::Kill: {
+        // texkill's operand is a destination token: a whole register, no swizzle or
+        // modifier. Anything else is first copied into a temp with all four components.
+        MSrc operand = src(in.src[0]);
+        const int reg = in.src[0].reg;
+        const bool whole = !operand.negate && !operand.absolute && operand.swizzle == kIdentity &&
+                           ir_.regWidth[reg] == 4 && !loc_[reg].placed;
+        if (!whole) {
+          int t = newTemp(4);
+          push(Opcode::Mov, dst(t, 4), {operand});
+          operand = vsrc(t);
+        }
         MInst m;
         m.op = Opcode::TexKill;
         m.hasDst = false;
         m.srcCount = 1;
-        m.src[0] = src(in.src[0]);
+        m.src[0] = operand;
         m.shape = Shape::Positional;
         m.where = where_;
         code_.push_back(m);
@@ -733,27 +741,23 @@ class CodeGen {
     push(op, dst(in.dst, 1, in.saturate), {a}, Shape::Scalar);
   }
 
+  // The builder has reduced the argument to [-pi, pi]; .x = cos, .y = sin.
   void sinCos(const IrInst& in) {
-    if (!sincosAvailable()) {
-      sink_.error(in.where, "X3500", "sin/cos are not yet supported in {}", v_.name());
+    if (!has(Opcode::SinCos)) {
+      sink_.error(in.where, "X9000", "internal error: {} has no sincos", v_.name());
       return;
     }
-    // Reduce to [-pi, pi]: frc(x / 2pi + 0.5) * 2pi - pi
-    int t = newTemp(1);
     MSrc a = src(in.src[0]);
     a.swizzle.fill(in.src[0].swizzle[0]);
-    push(Opcode::Mad, dst(t, 1), {a, literal(0.159154943f), literal(0.5f)});
-    push(Opcode::Frc, dst(t, 1), {vsrc(t, {0, 0, 0, 0})});
-    push(Opcode::Mad, dst(t, 1), {vsrc(t, {0, 0, 0, 0}), literal(6.28318548f), literal(-3.14159274f)});
-    MDst md = dst(in.dst, 1, in.saturate);
+    MDst md = dst(in.dst, 2, in.saturate);
     if (v_.major >= 3) {
-      push(Opcode::SinCos, md, {vsrc(t, {0, 0, 0, 0})}, Shape::Scalar);
+      push(Opcode::SinCos, md, {a}, Shape::Scalar);
     } else {
       MSrc c1, c2;
       c1.type = c2.type = RegType::Const;
       c1.index = vectorDef({-1.55009923e-6f, -2.17013894e-5f, 0.00260416674f, 0.00026041668f});
       c2.index = vectorDef({-0.020833334f, -0.125f, 1.0f, 0.5f});
-      push(Opcode::SinCos, md, {vsrc(t, {0, 0, 0, 0}), c1, c2}, Shape::Scalar);
+      push(Opcode::SinCos, md, {a, c1, c2}, Shape::Scalar);
     }
   }
 
@@ -1248,6 +1252,13 @@ class CodeGen {
       if (m.hasDst) in.dst = physicalDst(m.dst);
       in.srcCount = uint8_t(m.srcCount);
       for (int s = 0; s < m.srcCount; ++s) in.src[s] = physicalSrc(m, m.src[s]);
+      if (m.op == Opcode::TexKill) {  // the operand is encoded as a destination
+        in.hasDst = true;
+        in.dst.type = in.src[0].type;
+        in.dst.index = in.src[0].index;
+        in.dst.writeMask = 0xF;
+        in.srcCount = 0;
+      }
       in.pos = {m.where.line, m.where.column};
       out.instructions.push_back(in);
     }

@@ -22,7 +22,8 @@ enum class IrOp : uint8_t {
   Cmp,       // src0 >= 0 ? src1 : src2
   Lrp,       // src0 * src1 + (1 - src0) * src2
   Frc, Abs, Nrm, Crs,
-  Rcp, Rsq, Exp2, Log2, Pow, Sin, Cos,  // scalar: per component
+  Rcp, Rsq, Exp2, Log2, Pow,  // scalar: per component
+  SinCos,    // width 2 from the replicated src0 in [-pi, pi]: .x = cos, .y = sin
   Dsx, Dsy,
   Tex, TexProj, TexBias, TexLod, TexGrad,  // src0 coordinate, src1/2 gradients; sampler = index
   Kill,      // texkill src0: discard when any component < 0

@@ -65,7 +65,7 @@ void propagateCopies(IrProgram& ir) {
     switch (op) {
       case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: case IrOp::Combine: case IrOp::Kill:
       case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad:
-      case IrOp::Sin: case IrOp::Cos: case IrOp::Frc:
+      case IrOp::SinCos: case IrOp::Frc:
         return false;
       default: return true;
     }
