@@ -599,7 +599,13 @@ class Builder {
       inst.index = (r << 16) | v.uniformIndex;
       rows.push_back(emitInst(std::move(inst)));
     }
-    v.comps.clear();
+    v.comps = layoutRows(u.type, rows);
+  }
+
+  // The components of a value of type `t` held in constant registers `rows` (one
+  // virtual register each), as the constant table lays it out.
+  static Comps layoutRows(const Type& t, const std::vector<int>& rows) {
+    Comps out;
     int row = 0;
     std::function<void(const Type&)> walk = [&](const Type& ty) {
       if (ty.isArray()) { for (int i = 0; i < ty.arraySize; ++i) walk(*ty.element); return; }
@@ -610,11 +616,37 @@ class Builder {
           Comp k;
           if (ty.cls == TypeClass::Matrix && ty.packing != 1) { k.reg = rows[row + c]; k.c = uint8_t(r); }
           else { k.reg = rows[row + r]; k.c = uint8_t(c); }
-          v.comps.push_back(k);
+          out.push_back(k);
         }
       row += regs;
     };
-    walk(u.type);
+    walk(t);
+    return out;
+  }
+
+  // A uniform array named by `e` (a global uniform, or an array member of a uniform
+  // struct): which uniform, the register row its element 0 starts at, its type.
+  struct UniformArray {
+    int uniform = -1;
+    int row = 0;
+    Type type;
+  };
+  std::optional<UniformArray> uniformArray(const Expr& e) {
+    if (e.kind == ExprKind::Name) {
+      Variable* v = lookup(e.op);
+      if (!v || !v->uniform || v->uniformIndex < 0) return std::nullopt;
+      return UniformArray{v->uniformIndex, 0, v->type};
+    }
+    if (e.kind == ExprKind::Member) {
+      std::optional<UniformArray> base = uniformArray(*e.args[0]);
+      if (!base || base->type.cls != TypeClass::Struct || base->type.isArray()) return std::nullopt;
+      int row = base->row;
+      for (const auto& m : base->type.structDef->members) {
+        if (m.name == e.op) return UniformArray{base->uniform, row, m.type};
+        row += registerRows(m.type);
+      }
+    }
+    return std::nullopt;
   }
 
   int samplerIndex(Variable& v) {
@@ -1418,6 +1450,10 @@ class Builder {
     Value base = expr(*e.args[0]);
     Value idx = expr(*e.args[1]);
     if (!base.ok || !idx.ok) return errorValue();
+    if (!idx.comps[0].literal() && idx.type.isNumeric()) {
+      std::optional<UniformArray> ua = uniformArray(*e.args[0]);
+      if (ua && ua->type.isArray() && registerRows(*ua->type.element) > 0) return relativeIndex(e, *ua, idx);
+    }
     if (idx.comps[0].literal()) {
       std::vector<int> sel;
       Type t;
@@ -1451,6 +1487,42 @@ class Builder {
       result.comps = select(ge, elem, result.comps);
     }
     return result;
+  }
+
+  // uniform[index] with a run-time index: vertex shaders read the element's registers
+  // relative to the address register, c[a0.x + first row]; a0.x holds index * (registers
+  // per element). Pixel shaders have no address register for constants.
+  Value relativeIndex(const Expr& e, const UniformArray& ua, const Value& idx) {
+    if (isPixel()) {
+      sink_.error(e.where, "X3512", "array index must be a literal expression: {} cannot index constant registers "
+                  "with a run-time value", opt_.version.name());
+      return errorValue();
+    }
+    const Type& elem = *ua.type.element;
+    const int stride = registerRows(elem);
+    // HLSL converts the index to int (toward zero); a negative index is out of bounds
+    // and undefined, so floor serves. vs_1_1 loads a0.x with mov, which floors itself.
+    Comps ix = convert(idx, Type::scalar(BaseType::Float), e.where).comps;
+    const bool vs11 = !opt_.version.atLeast(2, 0);
+    if (!isIntegral(idx.type.base) && !(vs11 && stride == 1)) ix = floorOf(ix);
+    if (stride > 1) ix = op(IrOp::Mul, 1, {ix, Comps{lit(float(stride))}});
+    ir_.uniforms[ua.uniform].used = true;
+    std::vector<int> rows;
+    for (int r = 0; r < stride; ++r) {
+      IrInst inst;
+      inst.op = IrOp::UniformRel;
+      inst.width = 4;
+      inst.srcCount = 1;
+      inst.src[0] = source(ix);
+      inst.index = ((ua.row + r) << 16) | ua.uniform;
+      inst.where = where_;
+      std::vector<int> key{int(IrOp::UniformRel), inst.index, inst.src[0].reg, inst.src[0].swizzle[0]};
+      if (auto it = cse_.find(key); it != cse_.end()) { rows.push_back(it->second); continue; }
+      int reg = emitInst(std::move(inst));
+      cse_[key] = reg;
+      rows.push_back(reg);
+    }
+    return Value{elem, layoutRows(elem, rows), true};
   }
 
   Value constructor(const Expr& e) {

@@ -47,6 +47,7 @@ struct MSrc {
   Map swizzle = kIdentity;  // logical (vreg) or physical (fixed) components
   bool negate = false;
   bool absolute = false;
+  bool relative = false;  // fixed register indexed by a0.x: c[a0.x + index]
   int physicalOf = -1;  // names vreg's register with a physical swizzle
 };
 
@@ -500,6 +501,16 @@ class CodeGen {
     const int d = in.dst;
     switch (in.op) {
       case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: return;
+      case IrOp::UniformRel: {
+        loadAddress(in.src[0]);
+        const IrUniform& u = ir_.uniforms[in.index & 0xFFFF];
+        MSrc c;
+        c.type = RegType::Const;
+        c.index = u.firstRegister + (in.index >> 16);
+        c.relative = true;
+        push(Opcode::Mov, dst(d, 4), {c});
+        return;
+      }
       case IrOp::Combine: {
         // One mov per source register (or literal value) for the parts not coalesced.
         std::map<int, uint8_t> byReg;
@@ -592,7 +603,7 @@ class CodeGen {
             Map pair = {swz[c], swz[std::min(c + 1, w - 1)], swz[std::min(c + 1, w - 1)], swz[std::min(c + 1, w - 1)]};
             MSrc s = src(in.src[0]);
             s.swizzle = pair;
-            push(Opcode::Frc, dst(t, std::min(2, w - c)), {s});
+            push(Opcode::Frc, dst(t, 2), {s});  // .xy: vs_1_1 allows only .y and .xy
             MDst md = dst(d, w, in.saturate);
             md.mask = uint8_t((c + 1 < w ? 3u : 1u) << c);
             Map back = {0, 0, 0, 0};
@@ -699,6 +710,22 @@ class CodeGen {
         return;
       }
     }
+  }
+
+  // a0.x = the value of `s` (mova rounds it in vs_2_0+; vs_1_1's mov floors it), unless
+  // a0.x holds it already.
+  void loadAddress(const IrSrc& s) {
+    const std::array<int, 4> key{s.reg, s.swizzle[0], int(s.negate), int(s.absolute)};
+    if (a0Holds_ == key) return;
+    a0Holds_ = key;
+    MDst a;
+    a.vreg = -1;
+    a.type = RegType::Addr;
+    a.index = 0;
+    a.mask = 0x1;
+    MSrc value = src(s);
+    value.swizzle.fill(s.swizzle[0]);
+    push(v_.atLeast(2, 0) ? Opcode::MovA : Opcode::Mov, a, {value});
   }
 
   // Literal parts of a gather or an output: one mov from a def register holding them
@@ -1169,6 +1196,11 @@ class CodeGen {
                                    need[2] == 255 ? uint8_t(2) : need[2], need[3] == 255 ? uint8_t(3) : need[3]};
     if (s.physicalOf >= 0 || s.vreg < 0) swz = s.swizzle;
     if (p.type == RegType::Sampler) swz = kIdentity;
+    if (s.relative) {
+      p.relative = true;
+      p.rel.type = RegType::Addr;
+      p.rel.component = 0;
+    }
     p.swizzle = uint8_t(swz[0] | (swz[1] << 2) | (swz[2] << 4) | (swz[3] << 6));
     if (s.absolute) p.mod = s.negate ? SrcMod::AbsNeg : SrcMod::Abs;
     else if (s.negate) p.mod = SrcMod::Neg;
@@ -1328,6 +1360,7 @@ class CodeGen {
   int firstFreeConst_ = 0;
   bool constOverflowReported_ = false;
   std::vector<MInst> code_;
+  std::array<int, 4> a0Holds_{-1, -1, -1, -1};  // the source a0.x was last loaded from
 };
 
 }  // namespace

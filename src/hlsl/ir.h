@@ -16,6 +16,7 @@ namespace refx::hlsl {
 enum class IrOp : uint8_t {
   Input,     // shader input register (see IrProgram::inputs)
   Uniform,   // one constant register of a uniform
+  UniformRel,  // one constant register of a uniform array, relative: c[src0.x + row] (vertex shaders)
   Constant,  // literal values
   Combine,   // components gathered from other registers (parts[])
   Mov, Add, Mul, Mad, Dp2, Dp3, Dp4, Min, Max, Slt, Sge,
@@ -49,7 +50,7 @@ struct IrInst {
   std::array<IrSrc, 3> src{};
   int srcCount = 0;
   int sampler = -1;    // Tex*: sampler index in IrProgram::samplers
-  int index = 0;       // Input: input index; Uniform: uniform index and register row (row << 16 | uniform)
+  int index = 0;       // Input: input index; Uniform, UniformRel: uniform index and register row (row << 16 | uniform)
   std::array<float, 4> literal{};  // Constant
   std::vector<IrPart> parts;       // Combine
   SourceLocation where;

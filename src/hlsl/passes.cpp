@@ -63,7 +63,8 @@ void propagateCopies(IrProgram& ir) {
   forEachUse(ir, [&](int& r) { ++uses[r]; });
   auto satCapable = [](IrOp op) {
     switch (op) {
-      case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: case IrOp::Combine: case IrOp::Kill:
+      case IrOp::Input: case IrOp::Uniform: case IrOp::UniformRel: case IrOp::Constant: case IrOp::Combine:
+      case IrOp::Kill:
       case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad:
       case IrOp::SinCos: case IrOp::Frc:
         return false;
@@ -175,7 +176,7 @@ void removeDeadCode(IrProgram& ir) {
   ir.code = std::move(out);
   for (IrUniform& u : ir.uniforms) u.used = false;
   for (const IrInst& in : ir.code)
-    if (in.op == IrOp::Uniform) ir.uniforms[in.index & 0xFFFF].used = true;
+    if (in.op == IrOp::Uniform || in.op == IrOp::UniformRel) ir.uniforms[in.index & 0xFFFF].used = true;
 }
 
 }  // namespace refx::hlsl
