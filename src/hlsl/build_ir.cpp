@@ -249,7 +249,20 @@ class Builder {
 
   // Emits a component-wise op of `width` components; args are already `width` wide.
   Comps op(IrOp o, int width, std::initializer_list<Comps> args, bool saturate = false) {
-    std::vector<Comps> a(args);
+    return op(o, width, std::vector<Comps>(args), saturate);
+  }
+  Comps op(IrOp o, int width, const std::vector<Comps>& a, bool saturate) {
+    if (width > 4) {  // a matrix: one register's worth at a time
+      Comps out;
+      for (int at = 0; at < width; at += 4) {
+        const int n = std::min(4, width - at);
+        std::vector<Comps> part;
+        for (const Comps& x : a) part.emplace_back(x.begin() + at, x.begin() + at + n);
+        Comps r = op(o, n, part, saturate);
+        out.insert(out.end(), r.begin(), r.end());
+      }
+      return out;
+    }
     bool foldable = o != IrOp::Dsx && o != IrOp::Dsy && o != IrOp::Kill && o != IrOp::SinCos && o < IrOp::Tex;
     bool literal = foldable;
     for (const Comps& x : a)
@@ -328,6 +341,14 @@ class Builder {
       Comps o = a;
       for (Comp& c : o) c.k = -c.k;
       return o;
+    }
+    if (a.size() > 4) {  // a matrix: one register's worth at a time
+      Comps out;
+      for (size_t at = 0; at < a.size(); at += 4) {
+        Comps r = negate(Comps(a.begin() + long(at), a.begin() + long(std::min(a.size(), at + 4))));
+        out.insert(out.end(), r.begin(), r.end());
+      }
+      return out;
     }
     IrInst inst;
     inst.op = IrOp::Mov;

@@ -349,6 +349,7 @@ class CodeGen {
       if (pos[c] < 0) return false;
       map[c] = uint8_t(pos[c]);
     }
+    for (int c = width; c < 4; ++c) map[c] = map[width - 1];  // unused, but a valid component
     return true;
   }
 
