@@ -6,6 +6,9 @@
 //   4. legalise operands (swizzles a version cannot read, read-port limits);
 //   5. allocate temporaries (linear scan);
 //   6. write dcl/def, the constant table and the instruction list.
+// Flow-control markers become rep/if_comp/if b#/else/endif/break_comp in place;
+// registers written by Assign (variables of those regions) are ordinary temps whose
+// live ranges cover every loop they are read in.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -95,7 +98,9 @@ class CodeGen {
     loc_.assign(ir_.regWidth.size(), Loc{});
     def_.assign(ir_.regWidth.size(), -1);
     for (size_t i = 0; i < ir_.code.size(); ++i)
-      if (ir_.code[i].dst >= 0) def_[ir_.code[i].dst] = int(i);
+      if (ir_.code[i].dst >= 0 && ir_.code[i].op != IrOp::Assign) def_[ir_.code[i].dst] = int(i);
+    for (const IrInst& in : ir_.code)
+      if (in.op == IrOp::Assign) def_[in.dst] = -1;  // a variable: no single producer
     countUses();
     placeInputs();
     placeUniformsAndSamplers();
@@ -242,9 +247,61 @@ class CodeGen {
       ir_.samplers[s].registerIndex = nextS;
       sTaken[nextS++] = true;
     }
+    placeFlowUniforms();
     int limit = constLimit();
     if (firstFreeConst_ > limit)
       sink_.error(entryWhere_, "X4550", "{} has {} constant registers, the uniforms need {}", v_.name(), limit, firstFreeConst_);
+  }
+
+  // Int uniforms counting [loop]s get i# registers, bool uniforms of [branch]es b#.
+  void placeFlowUniforms() {
+    for (int pass = 0; pass < 2; ++pass)
+      for (IrUniform& u : ir_.uniforms) {
+        if (!u.loopCount && !u.branchBool) continue;
+        std::vector<bool>& taken = u.loopCount ? intTaken_ : boolTaken_;
+        const char file = u.loopCount ? 'i' : 'b';
+        int r = u.decl ? parseRegisterBinding(u.decl->registerBinding, file) : -1;
+        if (pass == 0) {  // explicit bindings first
+          if (r < 0) continue;
+          if (r >= 16) {
+            sink_.error(u.decl->where, "X4551", "'{}': {} has {}0..{}15", u.name, v_.name(), file, file);
+            continue;
+          }
+          if (u.used)
+            sink_.error(u.decl->where, "X4551",
+                        "'{}' is a {} register for flow control and is also read as a value; {} gives a uniform "
+                        "one register set",
+                        u.name, u.loopCount ? "loop count (i#)" : "branch condition (b#)", v_.name());
+          u.flowRegister = r;
+          taken[r] = true;
+          continue;
+        }
+        if (r >= 0) continue;
+        if (u.used)
+          sink_.error(u.decl ? u.decl->where : entryWhere_, "X4551",
+                      "'{}' is a {} register for flow control and is also read as a value; {} gives a uniform "
+                      "one register set",
+                      u.name, u.loopCount ? "loop count (i#)" : "branch condition (b#)", v_.name());
+        auto free = std::find(taken.begin(), taken.end(), false);
+        if (free == taken.end()) {
+          sink_.error(entryWhere_, "X4551", "{} has 16 {} registers", v_.name(), u.loopCount ? "int" : "bool");
+          continue;
+        }
+        u.flowRegister = int(free - taken.begin());
+        *free = true;
+      }
+  }
+
+  // i# holding a literal rep count (defi), shared by equal counts.
+  int repCountRegister(int count) {
+    if (auto it = repCounts_.find(count); it != repCounts_.end()) return it->second;
+    auto free = std::find(intTaken_.begin(), intTaken_.end(), false);
+    if (free == intTaken_.end()) {
+      sink_.error(entryWhere_, "X4551", "{} has 16 int registers; the loops need more", v_.name());
+      return 0;
+    }
+    *free = true;
+    return repCounts_[count] = int(free - intTaken_.begin());
   }
 
   int constLimit() const {
@@ -328,7 +385,7 @@ class CodeGen {
     switch (ir_.code[d].op) {
       case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: case IrOp::Combine: case IrOp::Kill:
       case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad:
-      case IrOp::Nrm: case IrOp::Crs: case IrOp::SinCos: case IrOp::Frc:
+      case IrOp::Nrm: case IrOp::Crs: case IrOp::SinCos: case IrOp::Frc: case IrOp::Assign:
         return false;
       default:
         return true;
@@ -502,6 +559,35 @@ class CodeGen {
     const int d = in.dst;
     switch (in.op) {
       case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: return;
+      case IrOp::Rep: {
+        MSrc count;
+        count.type = RegType::ConstInt;
+        count.index = in.uniform >= 0 ? ir_.uniforms[in.uniform].flowRegister : repCountRegister(in.index);
+        flow(Opcode::Rep, {count});
+        return;
+      }
+      case IrOp::EndRep: flow(Opcode::EndRep, {}); return;
+      case IrOp::If:
+        if (in.uniform >= 0) {
+          MSrc b;
+          b.type = RegType::ConstBool;
+          b.index = ir_.uniforms[in.uniform].flowRegister;
+          b.negate = in.index == 1;  // if !b#
+          flow(Opcode::If, {b});
+        } else {
+          flow(Opcode::IfC, {replicated(in.src[0]), replicated(in.src[1])}, uint8_t(in.compare));
+        }
+        return;
+      case IrOp::Else: flow(Opcode::Else, {}); return;
+      case IrOp::EndIf: flow(Opcode::EndIf, {}); return;
+      case IrOp::Break:
+        if (in.srcCount == 0) flow(Opcode::Break, {});
+        else flow(Opcode::BreakC, {replicated(in.src[0]), replicated(in.src[1])}, uint8_t(in.compare));
+        return;
+      case IrOp::Assign:
+        a0Holds_ = {-1, -1, -1, -1};
+        push(Opcode::Mov, dst(d, w), {src(in.src[0])});
+        return;
       case IrOp::UniformRel: {
         loadAddress(in.src[0]);
         const IrUniform& u = ir_.uniforms[in.index & 0xFFFF];
@@ -711,6 +797,25 @@ class CodeGen {
         return;
       }
     }
+  }
+
+  MSrc replicated(const IrSrc& s) {
+    MSrc m = src(s);
+    m.swizzle.fill(s.swizzle[0]);
+    return m;
+  }
+
+  // A flow-control instruction (no destination). a0.x is not trusted across one.
+  void flow(Opcode op, std::initializer_list<MSrc> srcs, uint8_t control = 0) {
+    MInst m;
+    m.op = op;
+    m.hasDst = false;
+    for (const MSrc& s : srcs) m.src[m.srcCount++] = s;
+    m.shape = Shape::Scalar;
+    m.control = control;
+    m.where = where_;
+    code_.push_back(m);
+    a0Holds_ = {-1, -1, -1, -1};
   }
 
   // a0.x = the value of `s` (mova rounds it in vs_2_0+; vs_1_1's mov floors it), unless
@@ -972,7 +1077,9 @@ class CodeGen {
       // (a) swizzles the version cannot read: gather the components first.
       for (int s = 0; s < m.srcCount; ++s) {
         MSrc& src = m.src[s];
-        if (src.type == RegType::Sampler && src.vreg < 0) continue;
+        if (src.vreg < 0 && (src.type == RegType::Sampler || src.type == RegType::ConstInt ||
+                             src.type == RegType::ConstBool))
+          continue;
         if (m.op == Opcode::SinCos && s > 0) continue;
         bool texCoord = (m.op == Opcode::Tex || m.op == Opcode::TexKill) && s == 0;
         auto need = sourceNeed(m, src);
@@ -1123,6 +1230,26 @@ class CodeGen {
         last[r] = std::max(last[r], i);
       }
     }
+    // A register read inside a loop but written before it is read again by the next
+    // iteration: it stays live to the loop's end. (Nested loops: until nothing grows.)
+    std::vector<std::pair<int, int>> loops;
+    std::vector<int> open;
+    for (int i = 0; i < int(code_.size()); ++i) {
+      if (code_[i].op == Opcode::Rep || code_[i].op == Opcode::Loop) open.push_back(i);
+      if ((code_[i].op == Opcode::EndRep || code_[i].op == Opcode::EndLoop) && !open.empty()) {
+        loops.emplace_back(open.back(), i);
+        open.pop_back();
+      }
+    }
+    for (bool grew = !loops.empty(); grew;) {
+      grew = false;
+      for (auto [begin, end] : loops)
+        for (size_t v = 0; v < n; ++v)
+          if (first[v] >= 0 && first[v] < begin && last[v] > begin && last[v] < end) {
+            last[v] = end;
+            grew = true;
+          }
+    }
     const shader::RegisterRule* rule = shader::findRegisterRule(*rules_, RegType::Temp);
     int limit = rule ? rule->count : 12;
     physTemp_.assign(n, -1);
@@ -1204,7 +1331,7 @@ class CodeGen {
     }
     p.swizzle = uint8_t(swz[0] | (swz[1] << 2) | (swz[2] << 4) | (swz[3] << 6));
     if (s.absolute) p.mod = s.negate ? SrcMod::AbsNeg : SrcMod::Abs;
-    else if (s.negate) p.mod = SrcMod::Neg;
+    else if (s.negate) p.mod = p.type == RegType::ConstBool ? SrcMod::Not : SrcMod::Neg;
     return p;
   }
 
@@ -1220,6 +1347,16 @@ class CodeGen {
       in.dst.type = RegType::Const;
       in.dst.index = uint16_t(d.reg);
       for (int c = 0; c < 4; ++c) std::memcpy(&in.literal[c], &d.values[c], 4);
+      out.instructions.push_back(in);
+    }
+    // defi: literal rep counts
+    for (auto [count, reg] : repCounts_) {
+      Instruction in;
+      in.opcode = Opcode::DefI;
+      in.hasDst = true;
+      in.dst.type = RegType::ConstInt;
+      in.dst.index = uint16_t(reg);
+      in.literal = {uint32_t(count), 0, 0, 0};
       out.instructions.push_back(in);
     }
     // dcl inputs
@@ -1303,7 +1440,17 @@ class CodeGen {
     table.target = v_.name();
     table.versionToken = v_.token();
     for (const IrUniform& u : ir_.uniforms) {
-      if (!u.used) continue;
+      if (u.flowRegister < 0) continue;
+      ConstantTable::Constant c;
+      c.name = u.name;
+      c.registerSet = u.loopCount ? ConstantTable::RegisterSet::Int4 : ConstantTable::RegisterSet::Bool;
+      c.registerIndex = u.flowRegister;
+      c.registerCount = 1;
+      c.type = u.type;
+      table.constants.push_back(c);
+    }
+    for (const IrUniform& u : ir_.uniforms) {
+      if (!u.used || u.flowRegister >= 0) continue;
       ConstantTable::Constant c;
       c.name = u.name;
       c.registerSet = ConstantTable::RegisterSet::Float4;
@@ -1362,6 +1509,8 @@ class CodeGen {
   bool constOverflowReported_ = false;
   std::vector<MInst> code_;
   std::array<int, 4> a0Holds_{-1, -1, -1, -1};  // the source a0.x was last loaded from
+  std::vector<bool> intTaken_ = std::vector<bool>(16, false), boolTaken_ = std::vector<bool>(16, false);
+  std::map<int, int> repCounts_;  // literal rep count → i# (defi)
 };
 
 }  // namespace

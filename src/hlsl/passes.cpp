@@ -1,4 +1,6 @@
 // IR optimisation passes. Each is one small function over the instruction list.
+// Registers that Assign writes (variables of flow-control regions) have no single
+// definition: no pass reads through them, copies them or moves them.
 #include <cmath>
 #include <vector>
 
@@ -8,10 +10,13 @@ namespace refx::hlsl {
 
 namespace {
 
+// The instruction defining each register; -1 for variables (written by Assign).
 std::vector<int> definitionIndex(const IrProgram& ir) {
   std::vector<int> def(ir.regWidth.size(), -1);
   for (size_t i = 0; i < ir.code.size(); ++i)
-    if (ir.code[i].dst >= 0) def[ir.code[i].dst] = int(i);
+    if (ir.code[i].dst >= 0 && ir.code[i].op != IrOp::Assign) def[ir.code[i].dst] = int(i);
+  for (const IrInst& in : ir.code)
+    if (in.op == IrOp::Assign) def[in.dst] = -1;
   return def;
 }
 
@@ -59,6 +64,7 @@ void foldConstants(IrProgram& ir) {
 // A saturating mov of a value nothing else reads moves its _sat onto the producer.
 void propagateCopies(IrProgram& ir) {
   std::vector<int> def = definitionIndex(ir);
+  const std::vector<bool> variable = ir.assignedRegisters();
   std::vector<int> uses(ir.regWidth.size(), 0);
   forEachUse(ir, [&](int& r) { ++uses[r]; });
   auto satCapable = [](IrOp op) {
@@ -84,8 +90,9 @@ void propagateCopies(IrProgram& ir) {
     in.saturate = false;  // now a plain copy, removed below
   }
   std::vector<const IrInst*> copyOf(ir.regWidth.size(), nullptr);
+  // A copy of a variable keeps the value it had there: it is not a copy to look through.
   for (const IrInst& in : ir.code)
-    if (in.op == IrOp::Mov && !in.saturate && in.dst >= 0) copyOf[in.dst] = &in;
+    if (in.op == IrOp::Mov && !in.saturate && in.dst >= 0 && !variable[in.src[0].reg]) copyOf[in.dst] = &in;
   // Resolve chains: each use is rewritten to read the root source.
   auto resolveSrc = [&](IrSrc& s) {
     for (int guard = 0; guard < 64 && s.reg >= 0 && copyOf[s.reg]; ++guard) {
@@ -117,6 +124,7 @@ void propagateCopies(IrProgram& ir) {
 // add(mul(a, b), c) → mad(a, b, c) when the product has no other reader.
 void fuseMultiplyAdd(IrProgram& ir) {
   std::vector<int> def = definitionIndex(ir);
+  const std::vector<bool> variable = ir.assignedRegisters();
   std::vector<int> uses(ir.regWidth.size(), 0);
   forEachUse(ir, [&](int& r) { ++uses[r]; });
   for (IrInst& in : ir.code) {
@@ -126,6 +134,7 @@ void fuseMultiplyAdd(IrProgram& ir) {
       if (prod.absolute || def[prod.reg] < 0 || uses[prod.reg] != 1) continue;
       const IrInst& mul = ir.code[def[prod.reg]];
       if (mul.op != IrOp::Mul || mul.saturate) continue;
+      if (variable[mul.src[0].reg] || variable[mul.src[1].reg]) continue;  // read where the mul is
       // The add reads the product through a swizzle: compose it into the mul's sources.
       IrSrc a = mul.src[0], b = mul.src[1];
       for (int c = 0; c < 4; ++c) {
@@ -145,9 +154,13 @@ void fuseMultiplyAdd(IrProgram& ir) {
   }
 }
 
-// Drops instructions whose results nothing reads (outputs and texkill are the roots).
+// Drops instructions whose results nothing reads (outputs, texkill and flow-control
+// markers are the roots). A variable that is read keeps every Assign to it.
 void removeDeadCode(IrProgram& ir) {
   std::vector<int> def = definitionIndex(ir);
+  std::vector<std::vector<int>> assigns(ir.regWidth.size());
+  for (size_t i = 0; i < ir.code.size(); ++i)
+    if (ir.code[i].op == IrOp::Assign) assigns[ir.code[i].dst].push_back(int(i));
   std::vector<bool> live(ir.regWidth.size(), false);
   std::vector<bool> keep(ir.code.size(), false);
   std::vector<int> work;
@@ -157,13 +170,17 @@ void removeDeadCode(IrProgram& ir) {
   for (const IrOutput& o : ir.outputs)
     for (const IrPart& p : o.parts) mark(p.reg);
   for (size_t i = 0; i < ir.code.size(); ++i)
-    if (ir.code[i].op == IrOp::Kill) {
+    if (ir.code[i].op == IrOp::Kill || isFlowMarker(ir.code[i].op)) {
       keep[i] = true;
       for (int s = 0; s < ir.code[i].srcCount; ++s) mark(ir.code[i].src[s].reg);
     }
   while (!work.empty()) {
     int r = work.back();
     work.pop_back();
+    for (int a : assigns[r]) {
+      keep[a] = true;
+      mark(ir.code[a].src[0].reg);
+    }
     if (def[r] < 0) continue;
     keep[def[r]] = true;
     const IrInst& in = ir.code[def[r]];
