@@ -742,7 +742,9 @@ class Builder {
   Comp active() {
     Comp a = conditions_.empty() ? lit(1) : conditions_.back();
     if (!functions_.empty()) a = andC(a, notC(functions_.back().returned));
-    if (!loops_.empty()) a = andC(a, notC(orC(loops_.back().broken, loops_.back().continued)));
+    // Every enclosing loop: lanes that left an outer loop (or skip the rest of its
+    // iteration) run nothing in the loops inside it either.
+    for (const LoopFrame& l : loops_) a = andC(a, notC(orC(l.broken, l.continued)));
     return a;
   }
 
@@ -883,14 +885,15 @@ class Builder {
   // condition is a literal true, with breaks ignored: returns that count, -1 when a
   // condition is known only at run time, -2 past 255.
   int unroll(const Stmt& s, const std::string& why, bool probe) {
-    // A break known only at run time masks the step too (i++ happens only where the
-    // loop goes on), so the counter stops being a literal; the lanes still in the loop
-    // see the counter of a loop without breaks: count that one first.
+    // A mask known only at run time (a break, or an enclosing if or loop) masks the
+    // step too (i++ happens only where the loop goes on), so the counter stops being a
+    // literal; the lanes still in the loop see the counter of an unmasked loop without
+    // breaks: count that one first.
     int withoutBreaks = -1;
     if (!probe) {
       Contents c;
       scan(s.body.get(), c, false);
-      if (c.breaks) withoutBreaks = tripCount(s);
+      if (c.breaks || !active().literal()) withoutBreaks = tripCount(s);
     }
     loops_.emplace_back();
     loops_.back().ignoreBreak = probe;
@@ -919,7 +922,8 @@ class Builder {
             }
             if (withoutBreaks >= 0) {
               if (iterations >= withoutBreaks) break;
-            } else if (s.unrollCount > 0 && iterations < s.unrollCount) {
+            } else if (s.unrollCount > 0) {  // [unroll(n)]: at most n iterations
+              if (iterations >= s.unrollCount) break;
               loops_.back().broken = orC(loops_.back().broken, andC(active(), notC(cond)));
             } else {
               cannotUnroll(": the loop condition does not depend only on constants");
@@ -1426,11 +1430,15 @@ class Builder {
     return n->uniformIndex;
   }
 
-  // The iterations a loop runs when they are known now: its unrolling, on trial.
+  // The iterations a loop runs when they are known now: its unrolling, on trial, as
+  // the lanes that run it see it (no enclosing masks, breaks ignored).
   int tripCount(const Stmt& s) {
     Checkpoint cp = save();
     DiagnosticSink scratch;
     sink_ = &scratch;
+    conditions_.push_back(lit(1));
+    for (LoopFrame& l : loops_) l.broken = l.continued = lit(0);
+    if (!functions_.empty()) functions_.back().returned = lit(0);
     int n = unroll(s, "", true);
     restore(cp);
     return n;
