@@ -108,7 +108,9 @@ class CodeGen {
     placeSpecialResults();
     coalesceOutputs();
     coalesceGathers();
-    for (size_t i = 0; i < ir_.code.size(); ++i) select(ir_.code[i]);
+    coalesceAssigns();
+    for (size_t i = 0; i < ir_.code.size(); ++i)
+      if (!assignedInPlace_.count(int(i))) select(ir_.code[i]);
     writeOutputs();
     if (sink_.hasErrors()) return out;
     legalise();
@@ -491,6 +493,38 @@ class CodeGen {
         l.map = m;
         coalescedIntoOutput_.insert(vreg);
       }
+    }
+  }
+
+  // A value whose only reader is an Assign (the end of a loop or branch body) is
+  // computed in the variable's register, when nothing between the two reads or writes
+  // that register and no flow-control marker lies between them. (Every producer that
+  // may be remapped writes its destination once, after reading its sources.)
+  void coalesceAssigns() {
+    for (size_t i = 0; i < ir_.code.size(); ++i) {
+      const IrInst& a = ir_.code[i];
+      if (a.op != IrOp::Assign) continue;
+      const IrSrc& s = a.src[0];
+      const int p = s.reg, var = a.dst;
+      if (s.negate || s.absolute || ir_.regWidth[p] != a.width || uses_[p] != 1 || loc_[p].placed || !remappable(p))
+        continue;
+      bool identity = true;
+      for (int c = 0; c < a.width; ++c) identity &= s.swizzle[c] == c;
+      const int d = def_[p];
+      if (!identity || d < 0 || size_t(d) > i) continue;
+      bool clear = true;
+      for (size_t k = size_t(d) + 1; k < i && clear; ++k) {
+        const IrInst& in = ir_.code[k];
+        if (isFlowMarker(in.op) || (in.op == IrOp::Assign && in.dst == var)) clear = false;
+        for (int j = 0; j < in.srcCount; ++j) clear &= in.src[j].reg != var;
+        for (const IrPart& part : in.parts) clear &= part.reg != var;
+      }
+      if (!clear) continue;
+      Loc& l = loc_[p];
+      l.placed = true;
+      l.aliasOf = var;
+      l.map = kIdentity;
+      assignedInPlace_.insert(int(i));
     }
   }
 
@@ -1511,6 +1545,7 @@ class CodeGen {
   std::array<int, 4> a0Holds_{-1, -1, -1, -1};  // the source a0.x was last loaded from
   std::vector<bool> intTaken_ = std::vector<bool>(16, false), boolTaken_ = std::vector<bool>(16, false);
   std::map<int, int> repCounts_;  // literal rep count → i# (defi)
+  std::set<int> assignedInPlace_;  // Assigns whose value was computed in the variable's register
 };
 
 }  // namespace
