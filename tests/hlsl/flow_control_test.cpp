@@ -71,6 +71,9 @@ TEST(HlslFlowControl, LoopWithLiteralTripCountIsRep) {
     const shader::Instruction* rep = find(r, Opcode::Rep);
     EXPECT_EQ(rep->src[0].type, shader::RegType::ConstInt);
     EXPECT_EQ(rep->src[0].index, defi->dst.index);
+    // as the disassembler lists it: defi i0, 4, … then rep i0 … endrep
+    std::string text = shader::disassemble(r.shader);
+    EXPECT_TRUE(std::regex_search(text, std::regex(R"(defi i0, 4, 0, 0, 0\n(.*\n)*rep i0\n(.*\n)*endrep)"))) << text;
   }
   // Without the attribute the loop unrolls: four mads, no rep.
   std::string unrolled = std::regex_replace(kLoop, std::regex(R"(\[loop\] )"), "");
@@ -123,6 +126,8 @@ float4 main(float4 t : TEXCOORD0) : COLOR
     EXPECT_EQ(count(r, Opcode::Else), 1);
     EXPECT_EQ(count(r, Opcode::EndIf), 1);
     EXPECT_EQ(count(r, Opcode::Cmp), 0) << "flattened:\n" << listing(r);
+    std::string text = shader::disassemble(r.shader);
+    EXPECT_TRUE(std::regex_search(text, std::regex(R"(if_gt [rtv]0\.x, c0\.\w\n(.*\n)*else\n(.*\n)*endif)"))) << text;
   }
 }
 
@@ -150,6 +155,9 @@ float4 main(float4 t : TEXCOORD0) : COLOR
         negated += in.src[0].mod == shader::SrcMod::Not;
       }
     EXPECT_EQ(negated, 1);
+    std::string text = shader::disassemble(r.shader);
+    EXPECT_NE(text.find("if b0\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("if !b0\n"), std::string::npos) << text;
     EXPECT_TRUE(std::regex_search(listing(r), std::regex(R"(//   b +b0 +1\n)"))) << listing(r);
   }
   // vs_2_0 has if b# (static flow control) but no if_comp
@@ -186,6 +194,8 @@ float4 main() : COLOR
   ASSERT_NE(br, nullptr) << listing(r);
   EXPECT_EQ(br->comparison(), shader::Comparison::Ge);
   EXPECT_EQ(count(r, Opcode::Rep), 1);
+  EXPECT_TRUE(std::regex_search(shader::disassemble(r.shader), std::regex(R"(rep i\d\n(.*\n)*break_ge r\d\.x, c0\.x\n)")))
+      << shader::disassemble(r.shader);
 }
 
 // Profiles without the instructions: a warning (X3554) at the statement that names
