@@ -16,6 +16,7 @@
 #include <tuple>
 
 #include "hlsl/ir.h"
+#include "refx/shader/version_rules.h"
 
 namespace refx::hlsl {
 
@@ -119,7 +120,7 @@ float truncF(float x) { return std::trunc(x); }
 class Builder {
  public:
   Builder(const Program& prog, const BuildOptions& opt, DiagnosticSink& sink)
-      : prog_(prog), opt_(opt), sink_(sink) {
+      : prog_(prog), opt_(opt), sink_(&sink), rules_(shader::findVersionRules(opt.version)) {
     ir_.version = opt.version;
   }
 
@@ -132,7 +133,7 @@ class Builder {
     for (const auto& f : prog_.functions)
       if (f->name == opt_.entry && f->body) { entry = f.get(); break; }
     if (!entry) {
-      sink_.error({opt_.fileName, 0, 0}, "X3501",
+      sink_->error({opt_.fileName, 0, 0}, "X3501",
                   "'{}': entrypoint not found", opt_.entry);
       return std::move(ir_);
     }
@@ -243,16 +244,27 @@ class Builder {
       case IrOp::Exp2: return std::exp2(a);
       case IrOp::Log2: return std::log2(std::fabs(a));
       case IrOp::Pow: return std::pow(std::fabs(a), b);
-      case IrOp::Sin: return std::sin(a);
-      case IrOp::Cos: return std::cos(a);
       default: return 0;
     }
   }
 
   // Emits a component-wise op of `width` components; args are already `width` wide.
   Comps op(IrOp o, int width, std::initializer_list<Comps> args, bool saturate = false) {
-    std::vector<Comps> a(args);
-    bool foldable = o != IrOp::Dsx && o != IrOp::Dsy && o != IrOp::Kill && o < IrOp::Tex;
+    return op(o, width, std::vector<Comps>(args), saturate);
+  }
+  Comps op(IrOp o, int width, const std::vector<Comps>& a, bool saturate) {
+    if (width > 4) {  // a matrix: one register's worth at a time
+      Comps out;
+      for (int at = 0; at < width; at += 4) {
+        const int n = std::min(4, width - at);
+        std::vector<Comps> part;
+        for (const Comps& x : a) part.emplace_back(x.begin() + at, x.begin() + at + n);
+        Comps r = op(o, n, part, saturate);
+        out.insert(out.end(), r.begin(), r.end());
+      }
+      return out;
+    }
+    bool foldable = o != IrOp::Dsx && o != IrOp::Dsy && o != IrOp::Kill && o != IrOp::SinCos && o < IrOp::Tex;
     bool literal = foldable;
     for (const Comps& x : a)
       if (!allLiteral(x)) literal = false;
@@ -331,6 +343,14 @@ class Builder {
       for (Comp& c : o) c.k = -c.k;
       return o;
     }
+    if (a.size() > 4) {  // a matrix: one register's worth at a time
+      Comps out;
+      for (size_t at = 0; at < a.size(); at += 4) {
+        Comps r = negate(Comps(a.begin() + long(at), a.begin() + long(std::min(a.size(), at + 4))));
+        out.insert(out.end(), r.begin(), r.end());
+      }
+      return out;
+    }
     IrInst inst;
     inst.op = IrOp::Mov;
     inst.width = int(a.size());
@@ -354,7 +374,7 @@ class Builder {
   // ---- types and conversions -------------------------------------------------------------------
   void warnTruncation(const SourceLocation& at) {
     if (!truncationWarned_.insert({at.file, at.line, at.column}).second) return;
-    sink_.warning(at, "X3206", "implicit truncation of vector type");
+    sink_->warning(at, "X3206", "implicit truncation of vector type");
   }
 
   // Converts `v` to numeric type `to` (HLSL implicit rules; casts allow more).
@@ -369,13 +389,13 @@ class Builder {
       }
       if (v.type.flatSize() == to.flatSize() && v.type.name() == to.name()) return Value{to, v.comps, true};
       if (v.type.flatSize() == to.flatSize() && explicitCast) return Value{to, v.comps, true};
-      sink_.error(at, "X3017", "cannot convert from '{}' to '{}'", v.type.name(), to.name());
+      sink_->error(at, "X3017", "cannot convert from '{}' to '{}'", v.type.name(), to.name());
       Value e = errorValue(); e.type = to; e.comps.assign(std::max(1, to.flatSize()), lit(0));
       return e;
     }
     if (to.cls == TypeClass::Object || v.type.cls == TypeClass::Object) {
       if (to.cls == TypeClass::Object && v.type.cls == TypeClass::Object && to.base == v.type.base) return Value{to, v.comps, true};
-      sink_.error(at, "X3017", "cannot convert from '{}' to '{}'", v.type.name(), to.name());
+      sink_->error(at, "X3017", "cannot convert from '{}' to '{}'", v.type.name(), to.name());
       return Value{to, {lit(0)}, false};
     }
     Comps src = v.comps;
@@ -384,7 +404,7 @@ class Builder {
       src.assign(n, v.comps[0]);
     } else if (to.cls == TypeClass::Matrix && v.type.cls == TypeClass::Matrix) {
       if (to.rows > v.type.rows || to.cols > v.type.cols) {
-        sink_.error(at, "X3017", "cannot convert from '{}' to '{}'", v.type.name(), to.name());
+        sink_->error(at, "X3017", "cannot convert from '{}' to '{}'", v.type.name(), to.name());
         return Value{to, Comps(n, lit(0)), false};
       }
       if (!explicitCast && (to.rows < v.type.rows || to.cols < v.type.cols)) warnTruncation(at);
@@ -395,7 +415,7 @@ class Builder {
       int have = v.type.components();
       if (have < n) {
         // float2x2 <-> float4 converts element-wise when the counts match
-        sink_.error(at, "X3017", "cannot implicitly convert from '{}' to '{}'", v.type.name(), to.name());
+        sink_->error(at, "X3017", "cannot implicitly convert from '{}' to '{}'", v.type.name(), to.name());
         return Value{to, Comps(n, lit(0)), false};
       }
       if (have > n && !explicitCast && !to.isScalar()) warnTruncation(at);
@@ -475,7 +495,7 @@ class Builder {
       const Type& m = a.cls == TypeClass::Matrix ? a : b;
       const Type& v = a.cls == TypeClass::Matrix ? b : a;
       if (v.components() == m.components()) { Type t = m; t.base = base; return t; }
-      sink_.error(at, "X3020", "type mismatch between '{}' and '{}'", a.name(), b.name());
+      sink_->error(at, "X3020", "type mismatch between '{}' and '{}'", a.name(), b.name());
       return Type::scalar(base);
     }
     int n = std::min(a.cols, b.cols);
@@ -534,7 +554,7 @@ class Builder {
       ir_.uniforms.push_back(std::move(u));
     }
     if (scopes_.front().count(g.name))
-      sink_.error(g.where, "X3003", "redefinition of '{}'", g.name);
+      sink_->error(g.where, "X3003", "redefinition of '{}'", g.name);
     scopes_.front()[g.name] = var.get();
     variables_.push_back(std::move(var));
   }
@@ -569,7 +589,7 @@ class Builder {
       int need = t.flatSize();
       if (int(flat.size()) != need) {
         if (flat.size() == 1 && t.isNumeric()) return Comps(need, flat[0]);
-        sink_.error(d.init->where, "X3017", "initializer has {} components, '{}' needs {}", flat.size(), t.name(), need);
+        sink_->error(d.init->where, "X3017", "initializer has {} components, '{}' needs {}", flat.size(), t.name(), need);
         flat.resize(need, lit(0));
       }
       return flat;
@@ -601,7 +621,13 @@ class Builder {
       inst.index = (r << 16) | v.uniformIndex;
       rows.push_back(emitInst(std::move(inst)));
     }
-    v.comps.clear();
+    v.comps = layoutRows(u.type, rows);
+  }
+
+  // The components of a value of type `t` held in constant registers `rows` (one
+  // virtual register each), as the constant table lays it out.
+  static Comps layoutRows(const Type& t, const std::vector<int>& rows) {
+    Comps out;
     int row = 0;
     std::function<void(const Type&)> walk = [&](const Type& ty) {
       if (ty.isArray()) { for (int i = 0; i < ty.arraySize; ++i) walk(*ty.element); return; }
@@ -612,11 +638,37 @@ class Builder {
           Comp k;
           if (ty.cls == TypeClass::Matrix && ty.packing != 1) { k.reg = rows[row + c]; k.c = uint8_t(r); }
           else { k.reg = rows[row + r]; k.c = uint8_t(c); }
-          v.comps.push_back(k);
+          out.push_back(k);
         }
       row += regs;
     };
-    walk(u.type);
+    walk(t);
+    return out;
+  }
+
+  // A uniform array named by `e` (a global uniform, or an array member of a uniform
+  // struct): which uniform, the register row its element 0 starts at, its type.
+  struct UniformArray {
+    int uniform = -1;
+    int row = 0;
+    Type type;
+  };
+  std::optional<UniformArray> uniformArray(const Expr& e) {
+    if (e.kind == ExprKind::Name) {
+      Variable* v = lookup(e.op);
+      if (!v || !v->uniform || v->uniformIndex < 0) return std::nullopt;
+      return UniformArray{v->uniformIndex, 0, v->type};
+    }
+    if (e.kind == ExprKind::Member) {
+      std::optional<UniformArray> base = uniformArray(*e.args[0]);
+      if (!base || base->type.cls != TypeClass::Struct || base->type.isArray()) return std::nullopt;
+      int row = base->row;
+      for (const auto& m : base->type.structDef->members) {
+        if (m.name == e.op) return UniformArray{base->uniform, row, m.type};
+        row += registerRows(m.type);
+      }
+    }
+    return std::nullopt;
   }
 
   int samplerIndex(Variable& v) {
@@ -644,7 +696,7 @@ class Builder {
     auto var = std::make_unique<Variable>();
     var->type = t;
     var->comps.assign(std::max(1, t.flatSize()), lit(0));
-    if (scopes_.back().count(name)) sink_.error(at, "X3003", "redefinition of '{}'", name);
+    if (scopes_.back().count(name)) sink_->error(at, "X3003", "redefinition of '{}'", name);
     scopes_.back()[name] = var.get();
     variables_.push_back(std::move(var));
     return variables_.back().get();
@@ -657,9 +709,19 @@ class Builder {
     Comps returnValue;
     bool hasReturnValue = false;
   };
+  // Components `comps` of variables_[var] that a flow-control region changes, held in
+  // `reg`, a register Assign writes (width comps.size()).
+  struct Carried {
+    int var = -1;
+    std::vector<int> comps;
+    int reg = -1;
+  };
   struct LoopFrame {
     Comp broken = lit(0);
     Comp continued = lit(0);
+    bool real = false;         // rep … endrep: a break is break_comp, not a mask
+    bool ignoreBreak = false;  // counting the iterations of a [loop]
+    std::vector<Carried> carried;  // real loops: the variables the body changes
   };
 
   Comp andC(Comp a, Comp b) {
@@ -680,7 +742,9 @@ class Builder {
   Comp active() {
     Comp a = conditions_.empty() ? lit(1) : conditions_.back();
     if (!functions_.empty()) a = andC(a, notC(functions_.back().returned));
-    if (!loops_.empty()) a = andC(a, notC(orC(loops_.back().broken, loops_.back().continued)));
+    // Every enclosing loop: lanes that left an outer loop (or skip the rest of its
+    // iteration) run nothing in the loops inside it either.
+    for (const LoopFrame& l : loops_) a = andC(a, notC(orC(l.broken, l.continued)));
     return a;
   }
 
@@ -707,6 +771,8 @@ class Builder {
         scopes_.pop_back();
         return;
       case StmtKind::If: {
+        if (breakStatement(s)) return;
+        if (hasAttribute(s, "branch") && branch(s)) return;
         Value c = condition(*s.expr);
         Comp cond = c.comps[0];
         if (cond.literal()) {
@@ -726,15 +792,17 @@ class Builder {
       case StmtKind::While:
       case StmtKind::Do: loop(s); return;
       case StmtKind::Break:
-        if (loops_.empty()) { sink_.error(s.where, "X3518", "break must be inside a loop"); return; }
+        if (loops_.empty()) { sink_->error(s.where, "X3518", "break must be inside a loop"); return; }
+        if (loops_.back().real) { realBreak(act); return; }
+        if (loops_.back().ignoreBreak) return;
         loops_.back().broken = orC(loops_.back().broken, act);
         return;
       case StmtKind::Continue:
-        if (loops_.empty()) { sink_.error(s.where, "X3519", "continue must be inside a loop"); return; }
+        if (loops_.empty()) { sink_->error(s.where, "X3519", "continue must be inside a loop"); return; }
         loops_.back().continued = orC(loops_.back().continued, act);
         return;
       case StmtKind::Discard: {
-        if (!isPixel()) { sink_.error(s.where, "X3539", "discard is only valid in pixel shaders"); return; }
+        if (!isPixel()) { sink_->error(s.where, "X3539", "discard is only valid in pixel shaders"); return; }
         kill(Comps{negate(Comps{act})[0]});
         return;
       }
@@ -747,13 +815,13 @@ class Builder {
         FunctionFrame& f = functions_.back();
         if (s.expr) {
           if (f.decl->returnType.isVoid()) {
-            sink_.error(s.where, "X3079", "void functions cannot return a value");
+            sink_->error(s.where, "X3079", "void functions cannot return a value");
           } else {
             if (!f.hasReturnValue) { f.returnValue = v.comps; f.hasReturnValue = true; }
             else f.returnValue = select(Comps{act}, v.comps, f.returnValue);
           }
         } else if (!f.decl->returnType.isVoid()) {
-          sink_.error(s.where, "X3080", "'{}': function must return a value", f.decl->name);
+          sink_->error(s.where, "X3080", "'{}': function must return a value", f.decl->name);
         }
         f.returned = orC(f.returned, act);
         return;
@@ -783,7 +851,7 @@ class Builder {
   Value condition(const Expr& e) {
     Value v = expr(e);
     if (!v.type.isNumeric()) {
-      sink_.error(e.where, "X3019", "if/loop condition must be a scalar, found '{}'", v.type.name());
+      sink_->error(e.where, "X3019", "if/loop condition must be a scalar, found '{}'", v.type.name());
       return Value{Type::scalar(BaseType::Bool), {lit(0)}, false};
     }
     if (!v.type.isScalar()) {
@@ -794,13 +862,51 @@ class Builder {
     return convert(v, Type::scalar(BaseType::Bool), e.where);
   }
 
+  // Loops unroll, unless marked [loop] on a profile with rep (see realLoop).
   void loop(const Stmt& s) {
     scopes_.emplace_back();
     if (s.init) statement(*s.init);
+    std::string why;
+    if (hasAttribute(s, "loop")) {
+      why = realLoopObstacle(s);
+      std::string code = "X3554";
+      if (why.empty() && realLoop(s, why, code)) {
+        scopes_.pop_back();
+        return;
+      }
+      sink_->warning(s.where, code, "[loop] ignored: {}; the loop is unrolled", why);
+    }
+    unroll(s, why, false);
+    scopes_.pop_back();
+  }
+
+  // Unrolls the loop after its init. `why`: the reason a [loop] is unrolled (its
+  // failures then name the profile). `probe`: only count the iterations whose
+  // condition is a literal true, with breaks ignored: returns that count, -1 when a
+  // condition is known only at run time, -2 past 255.
+  int unroll(const Stmt& s, const std::string& why, bool probe) {
+    // A mask known only at run time (a break, or an enclosing if or loop) masks the
+    // step too (i++ happens only where the loop goes on), so the counter stops being a
+    // literal; the lanes still in the loop see the counter of an unmasked loop without
+    // breaks: count that one first.
+    int withoutBreaks = -1;
+    if (!probe) {
+      Contents c;
+      scan(s.body.get(), c, false);
+      if (c.breaks || !active().literal()) withoutBreaks = tripCount(s);
+    }
     loops_.emplace_back();
-    const int kMaxIterations = 1024;
+    loops_.back().ignoreBreak = probe;
+    const int kMaxIterations = probe ? 255 : 1024;
     int iterations = 0;
+    int result = 0;
     bool first = true;
+    auto cannotUnroll = [&](const std::string& reason) {
+      if (why.empty()) sink_->error(s.where, "X3511", "unable to unroll loop{}", reason);
+      else
+        sink_->error(s.where, "X3531", "{} cannot run this [loop] ({}), and it cannot be unrolled{}",
+                     opt_.version.name(), why, reason);
+    };
     for (;;) {
       if (s.kind != StmtKind::Do || !first) {
         const Expr* c = s.expr.get();
@@ -810,10 +916,17 @@ class Builder {
           if (!cond.literal()) {
             // A condition only known at run time: the loop still unrolls when its
             // trip count is bounded by the attribute; otherwise it needs flow control.
-            if (s.unrollCount > 0 && iterations < s.unrollCount) {
+            if (probe) {
+              result = -1;
+              break;
+            }
+            if (withoutBreaks >= 0) {
+              if (iterations >= withoutBreaks) break;
+            } else if (s.unrollCount > 0) {  // [unroll(n)]: at most n iterations
+              if (iterations >= s.unrollCount) break;
               loops_.back().broken = orC(loops_.back().broken, andC(active(), notC(cond)));
             } else {
-              sink_.error(s.where, "X3511", "unable to unroll loop: the loop condition does not depend only on constants");
+              cannotUnroll(": the loop condition does not depend only on constants");
               break;
             }
           } else if (cond.k == 0) {
@@ -825,7 +938,11 @@ class Builder {
       Comp act = active();
       if (act.literal() && act.k == 0) break;
       if (++iterations > kMaxIterations) {
-        sink_.error(s.where, "X3511", "unable to unroll loop, loop does not appear to terminate in a timely manner ({} iterations)", kMaxIterations);
+        if (probe) {
+          result = -2;
+          break;
+        }
+        cannotUnroll(fmt::format(", loop does not appear to terminate in a timely manner ({} iterations)", kMaxIterations));
         break;
       }
       scoped(*s.body);
@@ -836,7 +953,674 @@ class Builder {
       if (s.kind == StmtKind::Do && !s.expr) break;
     }
     loops_.pop_back();
-    scopes_.pop_back();
+    return result < 0 ? result : iterations;
+  }
+
+  // ---- flow-control regions --------------------------------------------------------------------
+  // [loop] and [branch] keep loops and branches as rep … endrep and if … else … endif
+  // where the profile has them. A variable that such a region changes moves into a
+  // register written by Assign: before the region, and where each body ends (and before
+  // a break). A region is first built on trial when the variables it changes are not
+  // known yet (loops); everything it touched is then rolled back.
+
+  static bool hasAttribute(const Stmt& s, const char* name) {
+    return std::find(s.attributes.begin(), s.attributes.end(), name) != s.attributes.end();
+  }
+  bool profileHas(shader::Opcode op) const { return rules_ && shader::findOpcodeRule(*rules_, op); }
+
+  // What a statement holds that a region cannot express with masks: return, and
+  // break/continue that leave it (not those of a loop inside it).
+  struct Contents {
+    bool returns = false, breaks = false, continues = false;
+  };
+  static void scan(const Stmt* s, Contents& c, bool inLoop) {
+    if (!s) return;
+    switch (s->kind) {
+      case StmtKind::Return: c.returns = true; break;
+      case StmtKind::Break: c.breaks |= !inLoop; break;
+      case StmtKind::Continue: c.continues |= !inLoop; break;
+      case StmtKind::For: case StmtKind::While: case StmtKind::Do: inLoop = true; break;
+      default: break;
+    }
+    scan(s->body.get(), c, inLoop);
+    scan(s->elseBody.get(), c, inLoop);
+    for (const auto& b : s->block) scan(b.get(), c, inLoop);
+  }
+  // Assignments, ++/-- and calls that may write something (user functions, out
+  // arguments of intrinsics).
+  bool hasSideEffects(const Expr* e) const {
+    if (!e) return false;
+    if (e->kind == ExprKind::Assign || e->kind == ExprKind::Postfix) return true;
+    if (e->kind == ExprKind::Unary && (e->op == "++" || e->op == "--")) return true;
+    if (e->kind == ExprKind::Call) {
+      if (e->op == "modf" || e->op == "frexp" || e->op == "sincos" || e->op == "clip") return true;
+      for (const auto& f : prog_.functions)
+        if (f->name == e->op) return true;
+    }
+    for (const auto& a : e->args)
+      if (hasSideEffects(a.get())) return true;
+    return false;
+  }
+  // Whether statement `s` assigns the variable called `name` (++, --, =, op=).
+  static bool assignsName(const Stmt* s, const std::string& name) {
+    if (!s) return false;
+    std::function<bool(const Expr*)> inExpr = [&](const Expr* e) {
+      if (!e) return false;
+      bool writes = e->kind == ExprKind::Assign || e->kind == ExprKind::Postfix ||
+                    (e->kind == ExprKind::Unary && (e->op == "++" || e->op == "--"));
+      if (writes) {
+        const Expr* root = e->args[0].get();
+        while (root->kind == ExprKind::Member || root->kind == ExprKind::Index) root = root->args[0].get();
+        if (root->kind == ExprKind::Name && root->op == name) return true;
+      }
+      for (const auto& a : e->args)
+        if (inExpr(a.get())) return true;
+      return false;
+    };
+    if (inExpr(s->expr.get()) || inExpr(s->step.get())) return true;
+    for (const auto& d : s->decls)
+      if (inExpr(d->init.get())) return true;
+    if (assignsName(s->init.get(), name) || assignsName(s->body.get(), name) || assignsName(s->elseBody.get(), name))
+      return true;
+    for (const auto& b : s->block)
+      if (assignsName(b.get(), name)) return true;
+    return false;
+  }
+
+  // Everything building code changes, so a trial build can be undone.
+  struct Checkpoint {
+    size_t code = 0, regs = 0, samplers = 0, variables = 0;
+    bool usesKill = false;
+    std::vector<IrUniform> uniforms;
+    std::vector<std::pair<Comps, bool>> values;  // per variable: comps, bound
+    std::vector<std::map<std::string, Variable*>> scopes;
+    std::set<Variable*> uninitialized;
+    std::set<std::tuple<std::string, int, int>> truncationWarned;
+    std::map<std::vector<float>, int> constants;
+    std::map<std::vector<int>, int> cse;
+    std::map<std::pair<int, int>, Comp> rcpOf;
+    std::map<std::vector<std::tuple<int, int, float>>, int> combines;
+    std::vector<Comp> conditions;
+    std::vector<FunctionFrame> functions;
+    std::vector<LoopFrame> loops;
+    DiagnosticSink* sink = nullptr;
+    SourceLocation where;
+    int realLoops = 0;
+  };
+  Checkpoint save() const {
+    Checkpoint c;
+    c.code = ir_.code.size();
+    c.regs = ir_.regWidth.size();
+    c.samplers = ir_.samplers.size();
+    c.variables = variables_.size();
+    c.usesKill = ir_.usesKill;
+    c.uniforms = ir_.uniforms;
+    for (const auto& v : variables_) c.values.emplace_back(v->comps, v->bound);
+    c.scopes = scopes_;
+    c.uninitialized = uninitialized_;
+    c.truncationWarned = truncationWarned_;
+    c.constants = constants_;
+    c.cse = cse_;
+    c.rcpOf = rcpOf_;
+    c.combines = combines_;
+    c.conditions = conditions_;
+    c.functions = functions_;
+    c.loops = loops_;
+    c.sink = sink_;
+    c.where = where_;
+    c.realLoops = realLoops_;
+    return c;
+  }
+  void restore(Checkpoint& c) {
+    ir_.code.resize(c.code);
+    ir_.regWidth.resize(c.regs);
+    ir_.samplers.resize(c.samplers);
+    ir_.usesKill = c.usesKill;
+    ir_.uniforms = std::move(c.uniforms);
+    scopes_ = std::move(c.scopes);
+    variables_.resize(c.variables);
+    for (size_t i = 0; i < c.variables; ++i) std::tie(variables_[i]->comps, variables_[i]->bound) = c.values[i];
+    uninitialized_ = std::move(c.uninitialized);
+    truncationWarned_ = std::move(c.truncationWarned);
+    constants_ = std::move(c.constants);
+    cse_ = std::move(c.cse);
+    rcpOf_ = std::move(c.rcpOf);
+    combines_ = std::move(c.combines);
+    conditions_ = std::move(c.conditions);
+    functions_ = std::move(c.functions);
+    loops_ = std::move(c.loops);
+    sink_ = c.sink;
+    where_ = c.where;
+    realLoops_ = c.realLoops;
+  }
+
+  // Values computed inside a region (registers from `first` on) are not there after
+  // it, nor in the other body of an if: common subexpressions forget them.
+  void forgetValuesFrom(int first) {
+    std::erase_if(cse_, [&](const auto& e) { return e.second >= first; });
+    std::erase_if(combines_, [&](const auto& e) { return e.second >= first; });
+    std::erase_if(rcpOf_, [&](const auto& e) { return e.first.first >= first; });
+  }
+
+  void emitMarker(IrOp o, std::initializer_list<Comp> sources = {},
+                  shader::Comparison compare = shader::Comparison::None) {
+    IrInst inst;
+    inst.op = o;
+    inst.width = 0;
+    inst.compare = compare;
+    for (const Comp& c : sources) inst.src[inst.srcCount++] = source(Comps{c});
+    inst.where = where_;
+    ir_.code.push_back(std::move(inst));
+  }
+  void emitAssign(int reg, const IrSrc& value, int width) {
+    IrInst inst;
+    inst.op = IrOp::Assign;
+    inst.dst = reg;
+    inst.width = width;
+    inst.srcCount = 1;
+    inst.src[0] = value;
+    inst.where = where_;
+    ir_.code.push_back(std::move(inst));
+  }
+
+  // New registers for components `idx` of variable `var`, four per register.
+  void carry(int var, const std::vector<int>& idx, std::vector<Carried>& out) {
+    for (size_t at = 0; at < idx.size(); at += 4) {
+      Carried c;
+      c.var = var;
+      c.comps.assign(idx.begin() + at, idx.begin() + std::min(idx.size(), at + 4));
+      c.reg = ir_.newReg(int(c.comps.size()));
+      out.push_back(std::move(c));
+    }
+  }
+  Comps valueOf(const Carried& c) const {
+    Comps v;
+    for (int k : c.comps) v.push_back(variables_[c.var]->comps[k]);
+    return v;
+  }
+  bool holdsItsRegister(const Carried& c) const {
+    for (size_t j = 0; j < c.comps.size(); ++j) {
+      const Comp& k = variables_[c.var]->comps[c.comps[j]];
+      if (k.literal() || k.reg != c.reg || k.c != j) return false;
+    }
+    return true;
+  }
+  void readFromRegister(const Carried& c) {
+    for (size_t j = 0; j < c.comps.size(); ++j) {
+      Comp k;
+      k.reg = c.reg;
+      k.c = uint8_t(j);
+      variables_[c.var]->comps[c.comps[j]] = k;
+    }
+  }
+  // A fresh register holding `v` now, for a value that reads a register about to be
+  // written (never shared through the caches).
+  IrSrc copyOut(const Comps& v) {
+    IrInst inst;
+    inst.op = IrOp::Mov;
+    inst.width = int(v.size());
+    inst.srcCount = 1;
+    inst.src[0] = source(v);
+    inst.where = where_;
+    IrSrc out;
+    out.reg = emitInst(std::move(inst));
+    return out;
+  }
+  // Writes the current values of `groups` into their registers as one parallel copy:
+  // a value that reads one of these registers is copied out first.
+  void writeBack(const std::vector<Carried>& groups) {
+    std::set<int> targets;
+    for (const Carried& c : groups) targets.insert(c.reg);
+    std::vector<std::pair<const Carried*, IrSrc>> pending;
+    for (const Carried& c : groups) {
+      if (holdsItsRegister(c)) continue;
+      Comps v = valueOf(c);
+      bool readsTarget = false;
+      for (const Comp& k : v) readsTarget |= !k.literal() && targets.count(k.reg) > 0;
+      pending.emplace_back(&c, readsTarget ? copyOut(v) : source(v));
+    }
+    for (auto& [c, value] : pending) emitAssign(c->reg, value, int(c->comps.size()));
+  }
+
+  // a CMP b for a condition: a comparison of two scalars directly, anything else as
+  // (value != 0). False after an error.
+  bool comparisonOf(const Expr& e, Comp& a, Comp& b, shader::Comparison& cmp) {
+    using C = shader::Comparison;
+    static const std::map<std::string, C> ops = {{"<", C::Lt}, {">", C::Gt}, {"<=", C::Le},
+                                                 {">=", C::Ge}, {"==", C::Eq}, {"!=", C::Ne}};
+    if (e.kind == ExprKind::Binary && ops.count(e.op)) {
+      Value x = expr(*e.args[0]), y = expr(*e.args[1]);
+      if (!x.ok || !y.ok) return false;
+      if (x.type.isScalar() && y.type.isScalar()) {
+        a = convert(x, Type::scalar(BaseType::Float), e.where).comps[0];
+        b = convert(y, Type::scalar(BaseType::Float), e.where).comps[0];
+        cmp = ops.at(e.op);
+        return true;
+      }
+      // vectors: the general path below would evaluate the operands again
+      Value r = arithmetic(e.op, x, y, e.where);
+      if (!r.ok) return false;
+      warnTruncation(e.where);
+      a = r.comps[0];
+    } else {
+      Value c = condition(e);
+      if (!c.ok) return false;
+      a = c.comps[0];
+    }
+    b = lit(0);
+    cmp = C::Ne;
+    return true;
+  }
+  static bool compareLiterals(float a, float b, shader::Comparison cmp) {
+    using C = shader::Comparison;
+    switch (cmp) {
+      case C::Gt: return a > b;
+      case C::Eq: return a == b;
+      case C::Ge: return a >= b;
+      case C::Lt: return a < b;
+      case C::Ne: return a != b;
+      case C::Le: return a <= b;
+      default: return false;
+    }
+  }
+  static shader::Comparison inverse(shader::Comparison cmp) {
+    using C = shader::Comparison;
+    switch (cmp) {
+      case C::Gt: return C::Le;
+      case C::Eq: return C::Ne;
+      case C::Ge: return C::Lt;
+      case C::Lt: return C::Ge;
+      case C::Ne: return C::Eq;
+      case C::Le: return C::Gt;
+      default: return cmp;
+    }
+  }
+
+  // [branch] if: if_comp … else … endif, or if b# when the condition is a bool
+  // uniform. False: the caller flattens it (after a warning saying why).
+  bool branch(const Stmt& s) {
+    const Expr* boolExpr = s.expr.get();
+    bool negated = false;
+    if (boolExpr->kind == ExprKind::Unary && boolExpr->op == "!") {
+      boolExpr = boolExpr->args[0].get();
+      negated = true;
+    }
+    int boolUniform = -1;
+    if (boolExpr->kind == ExprKind::Name)
+      if (Variable* v = lookup(boolExpr->op);
+          v && v->uniform && v->uniformIndex >= 0 && v->type.isScalar() && v->type.base == BaseType::Bool)
+        boolUniform = v->uniformIndex;
+    Contents c;
+    scan(s.body.get(), c, false);
+    scan(s.elseBody.get(), c, false);
+    const bool inRealLoop = !loops_.empty() && loops_.back().real;
+    std::string why;
+    if (boolUniform >= 0 && !profileHas(shader::Opcode::If)) why = opt_.version.name() + " has no if b#";
+    else if (boolUniform < 0 && !profileHas(shader::Opcode::IfC)) why = opt_.version.name() + " has no if_comp";
+    else if (c.returns) why = "a return inside the branch needs it flattened";
+    else if (c.continues) why = "a continue inside the branch needs it flattened";
+    else if (c.breaks && !inRealLoop) why = "a break inside the branch of an unrolled loop needs it flattened";
+    if (!why.empty()) {
+      sink_->warning(s.where, "X3554", "[branch] ignored: {}; the branch is flattened", why);
+      return false;
+    }
+    // Built on trial: a per-pixel condition around gradient operations is undone.
+    Checkpoint cp = save();
+    DiagnosticSink scratch;
+    sink_ = &scratch;
+    auto commit = [&] {
+      sink_ = cp.sink;
+      for (const Diagnostic& d : scratch.all()) sink_->report(d);
+      return true;
+    };
+    if (boolUniform >= 0) {
+      ir_.uniforms[boolUniform].branchBool = true;
+      IrInst inst;
+      inst.op = IrOp::If;
+      inst.width = 0;
+      inst.uniform = boolUniform;
+      inst.index = negated ? 1 : 0;
+      inst.where = s.where;
+      ifRegion(inst, s);
+      return commit();
+    }
+    Comp a, b;
+    shader::Comparison cmp;
+    if (!comparisonOf(*s.expr, a, b, cmp)) return commit();
+    if (a.literal() && b.literal()) {  // known now: no branch
+      if (compareLiterals(a.k, b.k, cmp)) scoped(*s.body);
+      else if (s.elseBody) scoped(*s.elseBody);
+      return commit();
+    }
+    IrInst inst;
+    inst.op = IrOp::If;
+    inst.width = 0;
+    inst.compare = cmp;
+    inst.srcCount = 2;
+    inst.src[0] = source(Comps{a});
+    inst.src[1] = source(Comps{b});
+    inst.where = s.where;
+    size_t at = ifRegion(inst, s);
+    if (isPixel() && gradientsFrom(at)) {
+      restore(cp);
+      sink_->warning(s.where, "X4121",
+                     "[branch] ignored: gradient operations (tex2D, ddx …) inside a branch on a per-pixel condition "
+                     "are undefined; the branch is flattened");
+      return false;
+    }
+    return commit();
+  }
+
+  // Texture sampling with implicit gradients, or ddx/ddy, from instruction `from` on.
+  bool gradientsFrom(size_t from) const {
+    for (size_t i = from; i < ir_.code.size(); ++i)
+      switch (ir_.code[i].op) {
+        case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::Dsx: case IrOp::Dsy: return true;
+        default: break;
+      }
+    return false;
+  }
+  // A break from instruction `from` on: lanes may leave the loop at different times.
+  bool breaksFrom(size_t from) const {
+    for (size_t i = from; i < ir_.code.size(); ++i)
+      if (ir_.code[i].op == IrOp::Break) return true;
+    return false;
+  }
+
+  // if … [else …] endif around the bodies of `s`. The variables either body changes
+  // get registers, initialised before the if and written at the end of each body.
+  // Returns where the if marker ended up.
+  size_t ifRegion(const IrInst& marker, const Stmt& s) {
+    const size_t initAt = ir_.code.size();
+    ir_.code.push_back(marker);
+    const int barrier = int(ir_.regWidth.size());
+    const size_t count = variables_.size();
+    std::vector<Comps> before(count);
+    for (size_t i = 0; i < count; ++i) before[i] = variables_[i]->comps;
+    std::vector<Carried> groups;
+    // A break ends its body here, not the loop body after the endif.
+    const Comp brokenBefore = loops_.empty() ? lit(0) : loops_.back().broken;
+    auto closeBody = [&] {
+      if (!loops_.empty()) loops_.back().broken = brokenBefore;
+      std::set<size_t> touched;
+      for (size_t i = 0; i < count; ++i) {
+        Variable* v = variables_[i].get();
+        if (v->uniform) continue;
+        std::vector<int> changed, fresh;
+        for (size_t k = 0; k < v->comps.size(); ++k)
+          if (!(v->comps[k] == before[i][k])) changed.push_back(int(k));
+        for (int k : changed) {
+          bool held = false;
+          for (size_t g = 0; g < groups.size(); ++g)
+            if (groups[g].var == int(i) && std::count(groups[g].comps.begin(), groups[g].comps.end(), k)) {
+              touched.insert(g);
+              held = true;
+            }
+          if (!held) fresh.push_back(k);
+        }
+        size_t first = groups.size();
+        carry(int(i), fresh, groups);
+        for (size_t g = first; g < groups.size(); ++g) touched.insert(g);
+      }
+      // This region's registers are not read inside it: no parallel copy needed.
+      for (size_t g : touched) emitAssign(groups[g].reg, source(valueOf(groups[g])), int(groups[g].comps.size()));
+      for (size_t i = 0; i < count; ++i)
+        if (!variables_[i]->uniform) variables_[i]->comps = before[i];
+      forgetValuesFrom(barrier);
+    };
+    scoped(*s.body);
+    closeBody();
+    if (s.elseBody) {
+      emitMarker(IrOp::Else);
+      scoped(*s.elseBody);
+      closeBody();
+    }
+    emitMarker(IrOp::EndIf);
+    // The registers start with the values before the if (inserted ahead of it).
+    std::vector<IrInst> tail(std::make_move_iterator(ir_.code.begin() + long(initAt)),
+                             std::make_move_iterator(ir_.code.end()));
+    ir_.code.resize(initAt);
+    for (const Carried& g : groups) {
+      Comps v;
+      for (int k : g.comps) v.push_back(before[g.var][k]);
+      emitAssign(g.reg, source(v), int(g.comps.size()));
+    }
+    const size_t markerAt = ir_.code.size();
+    for (IrInst& in : tail) ir_.code.push_back(std::move(in));
+    forgetValuesFrom(barrier);
+    for (const Carried& g : groups) readFromRegister(g);
+    return markerAt;
+  }
+
+  // Why a [loop] cannot be a rep … endrep here ("" when it can).
+  std::string realLoopObstacle(const Stmt& s) const {
+    const std::string profile = opt_.version.name();
+    if (!profileHas(shader::Opcode::Rep)) return profile + " has no rep or loop instruction";
+    if (realLoops_ >= rules_->flow.loopDepth)
+      return fmt::format("{} allows rep/loop nesting depth {}", profile, rules_->flow.loopDepth);
+    Contents c;
+    scan(s.body.get(), c, false);
+    if (c.returns) return "a return inside the loop needs it unrolled";
+    if (c.breaks && !profileHas(shader::Opcode::BreakC)) return profile + " has no break_comp for the break";
+    if (hasSideEffects(s.expr.get())) return "the loop condition has side effects";
+    return "";
+  }
+
+  // for (i = 0; i < n; i++) with n a uniform int and a body that leaves i alone: the
+  // trip count is n, from an int register (rep i#). Returns n's uniform, or -1.
+  int uniformTripCount(const Stmt& s) {
+    if (s.kind != StmtKind::For || !s.expr || !s.step) return -1;
+    const Expr& c = *s.expr;
+    if (c.kind != ExprKind::Binary || c.op != "<" || c.args[0]->kind != ExprKind::Name ||
+        c.args[1]->kind != ExprKind::Name)
+      return -1;
+    const std::string& name = c.args[0]->op;
+    Variable* i = lookup(name);
+    Variable* n = lookup(c.args[1]->op);
+    if (!i || !n || i->uniform || !n->uniform || n->uniformIndex < 0 || !n->type.isScalar() ||
+        (n->type.base != BaseType::Int && n->type.base != BaseType::Uint))
+      return -1;
+    if (i->comps.size() != 1 || !i->comps[0].literal() || i->comps[0].k != 0) return -1;
+    const Expr& st = *s.step;
+    auto isI = [&](const Expr& x) { return x.kind == ExprKind::Name && x.op == name; };
+    bool plusOne = ((st.kind == ExprKind::Postfix || st.kind == ExprKind::Unary) && st.op == "++" && isI(*st.args[0])) ||
+                   (st.kind == ExprKind::Assign && st.op == "+=" && isI(*st.args[0]) &&
+                    st.args[1]->kind == ExprKind::Literal && st.args[1]->number == 1);
+    if (!plusOne || assignsName(s.body.get(), name)) return -1;
+    return n->uniformIndex;
+  }
+
+  // The iterations a loop runs when they are known now: its unrolling, on trial, as
+  // the lanes that run it see it (no enclosing masks, breaks ignored).
+  int tripCount(const Stmt& s) {
+    Checkpoint cp = save();
+    DiagnosticSink scratch;
+    sink_ = &scratch;
+    conditions_.push_back(lit(1));
+    for (LoopFrame& l : loops_) l.broken = l.continued = lit(0);
+    if (!functions_.empty()) functions_.back().returned = lit(0);
+    int n = unroll(s, "", true);
+    restore(cp);
+    return n;
+  }
+
+  // [loop] as rep … endrep. False (with `why`) when it has to be unrolled after all.
+  bool realLoop(const Stmt& s, std::string& why, std::string& code) {
+    int count = tripCount(s);
+    int countUniform = -1;
+    bool checkCondition = false;
+    if (count == -2) {
+      Contents c;
+      scan(s.body.get(), c, false);
+      if (!c.breaks) {
+        sink_->error(s.where, "X3531", "this [loop] runs more than 255 iterations; rep in {} counts at most 255",
+                     opt_.version.name());
+        return true;
+      }
+      // Left by its break (while (true) { … break; }): as many iterations as rep runs.
+      sink_->warning(s.where, "X3532", "this [loop] runs at most 255 iterations (rep's count in {}); it has to "
+                     "leave by its break before", opt_.version.name());
+      count = 255;
+    }
+    if (count == -1) {
+      countUniform = uniformTripCount(s);
+      if (countUniform < 0) {
+        if (!profileHas(shader::Opcode::BreakC)) {
+          why = opt_.version.name() + " has no break_comp to end a loop whose trip count is known only at run time";
+          return false;
+        }
+        count = 255;  // the most rep runs; break_comp ends the loop when its condition fails
+        checkCondition = true;
+      }
+    }
+    if (count == 0) return true;
+    // Build the body until the set of variables it changes is known: each try carries
+    // what the previous one found changed, from the start.
+    std::set<std::pair<int, int>> carried;
+    for (int attempt = 0; attempt < 16; ++attempt) {
+      Checkpoint cp = save();
+      DiagnosticSink scratch;
+      sink_ = &scratch;
+      const size_t at = ir_.code.size();
+      bool settled = repRegion(s, count, countUniform, checkCondition, carried);
+      if (settled && isPixel() && breaksFrom(at) && gradientsFrom(at)) {
+        restore(cp);
+        why = "gradient operations (tex2D, ddx …) inside a loop that lanes leave at different times are undefined";
+        code = "X3553";
+        return false;
+      }
+      if (settled) {
+        // Indices that need the counter as a literal (uniform arrays in pixel shaders,
+        // X3512; writes to local arrays, X3500): unrolled, it is one.
+        for (const Diagnostic& d : scratch.all())
+          if (d.code == "X3512" || d.code == "X3500") {
+            restore(cp);
+            why = fmt::format("{} cannot index {} by the loop counter", opt_.version.name(),
+                              d.code == "X3512" ? "a uniform array" : "an array it writes");
+            return false;
+          }
+        sink_ = cp.sink;
+        for (const Diagnostic& d : scratch.all()) sink_->report(d);
+        return true;
+      }
+      restore(cp);
+    }
+    sink_->error(s.where, "X9000", "internal error: the variables of this [loop] do not settle");
+    return true;
+  }
+
+  // One try at rep … endrep with the components `carried` in registers. False (and
+  // `carried` grown) when the body changes more.
+  bool repRegion(const Stmt& s, int count, int countUniform, bool checkCondition,
+                 std::set<std::pair<int, int>>& carried) {
+    const int barrier = int(ir_.regWidth.size());
+    const size_t varCount = variables_.size();
+    LoopFrame frame;
+    frame.real = true;
+    std::map<int, std::vector<int>> byVariable;
+    for (auto [v, k] : carried) byVariable[v].push_back(k);
+    for (auto& [v, idx] : byVariable) carry(v, idx, frame.carried);
+    for (const Carried& g : frame.carried) {
+      emitAssign(g.reg, source(valueOf(g)), int(g.comps.size()));
+      readFromRegister(g);
+    }
+    IrInst rep;
+    rep.op = IrOp::Rep;
+    rep.width = 0;
+    rep.index = count;
+    rep.uniform = countUniform;
+    rep.where = s.where;
+    ir_.code.push_back(rep);
+    if (countUniform >= 0) ir_.uniforms[countUniform].loopCount = true;
+    std::vector<Comps> start(varCount);
+    for (size_t i = 0; i < varCount; ++i) start[i] = variables_[i]->comps;
+    loops_.push_back(std::move(frame));
+    ++realLoops_;
+    // the condition of a loop whose trip count is known only at run time
+    auto breakUnless = [&](const Expr& e) {
+      Comp a, b;
+      shader::Comparison cmp;
+      if (!comparisonOf(e, a, b, cmp)) return;
+      if (a.literal() && b.literal()) {
+        if (!compareLiterals(a.k, b.k, cmp)) emitMarker(IrOp::Break);
+        return;
+      }
+      std::set<int> targets;
+      for (const Carried& g : loops_.back().carried) targets.insert(g.reg);
+      auto stable = [&](Comp k) {  // read before the registers are written
+        if (k.literal() || !targets.count(k.reg)) return k;
+        Comp out;
+        out.reg = copyOut(Comps{k}).reg;
+        return out;
+      };
+      if (s.kind == StmtKind::Do) {
+        a = stable(a);
+        b = stable(b);
+        writeBack(loops_.back().carried);
+      }
+      emitMarker(IrOp::Break, {a, b}, inverse(cmp));
+    };
+    if (checkCondition && s.kind != StmtKind::Do) breakUnless(*s.expr);
+    scoped(*s.body);
+    loops_.back().continued = lit(0);
+    if (s.kind == StmtKind::For && s.step) expr(*s.step);
+    bool settled = true;
+    for (size_t i = 0; i < varCount; ++i) {
+      if (variables_[i]->uniform) continue;
+      for (size_t k = 0; k < start[i].size(); ++k)
+        if (!(variables_[i]->comps[k] == start[i][k]) && carried.insert({int(i), int(k)}).second) settled = false;
+    }
+    if (settled) {
+      if (checkCondition && s.kind == StmtKind::Do) breakUnless(*s.expr);
+      else writeBack(loops_.back().carried);
+      emitMarker(IrOp::EndRep);
+      for (const Carried& g : loops_.back().carried) readFromRegister(g);
+      forgetValuesFrom(barrier);
+    }
+    loops_.pop_back();
+    --realLoops_;
+    return settled;
+  }
+
+  // break inside rep … endrep: break_comp on the active mask. The loop's variables are
+  // written first when the body has changed them, inside an if_comp so that only the
+  // lanes that leave write them.
+  void realBreak(Comp act) { realBreakIf(act, lit(0), shader::Comparison::Ne); }
+  void realBreakIf(Comp a, Comp b, shader::Comparison cmp) {
+    LoopFrame& f = loops_.back();
+    const bool always = a.literal() && b.literal();
+    if (always && !compareLiterals(a.k, b.k, cmp)) return;
+    bool changed = false;
+    for (const Carried& g : f.carried) changed |= !holdsItsRegister(g);
+    if (!changed) {
+      if (always) emitMarker(IrOp::Break);
+      else emitMarker(IrOp::Break, {a, b}, cmp);
+    } else if (always) {
+      writeBack(f.carried);
+      emitMarker(IrOp::Break);
+    } else {
+      emitMarker(IrOp::If, {a, b}, cmp);
+      const int barrier = int(ir_.regWidth.size());
+      writeBack(f.carried);
+      emitMarker(IrOp::Break);
+      emitMarker(IrOp::EndIf);
+      forgetValuesFrom(barrier);
+    }
+    if (always) f.broken = lit(1);  // the rest of the body is not reached
+  }
+
+  // `if (a CMP b) break;` directly in a rep body: one break_comp on the comparison.
+  bool breakStatement(const Stmt& s) {
+    if (loops_.empty() || !loops_.back().real || s.elseBody || !s.body) return false;
+    const Stmt* body = s.body.get();
+    while (body->kind == StmtKind::Block && body->block.size() == 1) body = body->block[0].get();
+    if (body->kind != StmtKind::Break) return false;
+    Comp act = active();
+    if (!act.literal() || act.k == 0) return false;
+    Comp a, b;
+    shader::Comparison cmp;
+    if (comparisonOf(*s.expr, a, b, cmp)) realBreakIf(a, b, cmp);
+    return true;
   }
 
   // ---- entry point -----------------------------------------------------------------------------
@@ -876,7 +1660,7 @@ class Builder {
     functions_.pop_back();
     if (!f.returnType.isVoid()) {
       if (!done.hasReturnValue) {
-        if (!f.syntaxErrors) sink_.error(f.where, "X3080", "'{}': function must return a value", f.name);
+        if (!f.syntaxErrors) sink_->error(f.where, "X3080", "'{}': function must return a value", f.name);
       } else {
         size_t at = 0;
         bindOutputs(f.returnType, f.returnSemantic, done.returnValue, at, f.where);
@@ -887,8 +1671,8 @@ class Builder {
       bindOutputs(decl->type, decl->semantic, var->comps, at, decl->where);
     }
     scopes_.pop_back();
-    if (ir_.outputs.empty() && !sink_.hasErrors() && !f.syntaxErrors)
-      sink_.error(f.where, "X4502", "'{}': the shader writes no outputs (add a semantic such as {})", f.name,
+    if (ir_.outputs.empty() && !sink_->hasErrors() && !f.syntaxErrors)
+      sink_->error(f.where, "X4502", "'{}': the shader writes no outputs (add a semantic such as {})", f.name,
                   isPixel() ? "COLOR" : "POSITION");
   }
 
@@ -904,23 +1688,23 @@ class Builder {
     }
     if (!t.isNumeric()) {
       if (t.cls == TypeClass::Object) { flat += 1; return; }
-      sink_.error(at, "X3502", "'{}' cannot be a shader input", t.name());
+      sink_->error(at, "X3502", "'{}' cannot be a shader input", t.name());
       flat += t.flatSize();
       return;
     }
     if (semantic.empty()) {
-      sink_.error(at, "X3502", "'{}': input parameter is missing semantics", opt_.entry);
+      sink_->error(at, "X3502", "'{}': input parameter is missing semantics", opt_.entry);
       flat += t.components();
       return;
     }
     Semantic sem = parseSemantic(semantic);
     if (!sem.valid) {
-      sink_.error(at, "X4502", "invalid input semantic '{}'", semantic);
+      sink_->error(at, "X4502", "invalid input semantic '{}'", semantic);
       flat += t.components();
       return;
     }
     if (isPixel() && !opt_.version.atLeast(3, 0) && (sem.vpos || sem.vface)) {
-      sink_.error(at, "X4502", "{} semantic is only available in ps_3_0", semantic);
+      sink_->error(at, "X4502", "{} semantic is only available in ps_3_0", semantic);
       flat += t.components();
       return;
     }
@@ -962,7 +1746,7 @@ class Builder {
     }
     int n = t.flatSize();
     if (semantic.empty()) {
-      sink_.error(where, "X4502", "'{}': output is missing semantics", opt_.entry);
+      sink_->error(where, "X4502", "'{}': output is missing semantics", opt_.entry);
       at += n;
       return;
     }
@@ -970,7 +1754,7 @@ class Builder {
     bool ok = sem.valid && !sem.vpos && !sem.vface;
     if (isPixel()) ok = ok && (sem.usage == DeclUsage::Color || sem.usage == DeclUsage::Depth);
     if (!ok) {
-      sink_.error(where, "X4502", "invalid {} output semantic '{}'", isPixel() ? "ps" : "vs", semantic);
+      sink_->error(where, "X4502", "invalid {} output semantic '{}'", isPixel() ? "ps" : "vs", semantic);
       at += n;
       return;
     }
@@ -992,7 +1776,7 @@ class Builder {
       }
       for (const IrOutput& prev : ir_.outputs)
         if (prev.usage == o.usage && prev.usageIndex == o.usageIndex)
-          sink_.error(where, "X4504", "overlapping output semantics '{}'", semantic);
+          sink_->error(where, "X4504", "overlapping output semantics '{}'", semantic);
       ir_.outputs.push_back(std::move(o));
     }
   }
@@ -1024,13 +1808,13 @@ class Builder {
       case ExprKind::Name: {
         Variable* var = lookup(e.op);
         if (!var) {
-          sink_.error(e.where, "X3004", "undeclared identifier '{}'", e.op);
+          sink_->error(e.where, "X3004", "undeclared identifier '{}'", e.op);
           return errorValue();
         }
         if (var->uniform && var->uniformIndex >= 0) bindUniform(*var);
         if (var->uniform && var->comps[0].sampler) samplerIndex(*var);
         if (uninitialized_.count(var)) {
-          sink_.warning(e.where, "X4000", "use of potentially uninitialized variable '{}'", e.op);
+          sink_->warning(e.where, "X4000", "use of potentially uninitialized variable '{}'", e.op);
           uninitialized_.erase(var);
         }
         return Value{var->type, var->comps, true};
@@ -1070,7 +1854,7 @@ class Builder {
             Comps cc = convert(c, Type::scalar(BaseType::Bool), e.where).comps;
             return Value{a.type, select(cc, a.comps, b.comps), true};
           }
-          sink_.error(e.where, "X3020", "type mismatch in the conditional expression");
+          sink_->error(e.where, "X3020", "type mismatch in the conditional expression");
           return errorValue();
         }
         Type rt = arithmeticResult(a.type, b.type, e.where);
@@ -1106,7 +1890,7 @@ class Builder {
     Value v = expr(*e.args[0]);
     if (!v.ok) return v;
     if (!v.type.isNumeric()) {
-      sink_.error(e.where, "X3022", "scalar, vector, or matrix expected for unary '{}'", e.op);
+      sink_->error(e.where, "X3022", "scalar, vector, or matrix expected for unary '{}'", e.op);
       return errorValue();
     }
     if (e.op == "+") return v;
@@ -1123,7 +1907,7 @@ class Builder {
       Comps r = op(IrOp::Add, n, {Comps(n, lit(1)), negate(b.comps)});
       return Value{bt, r, true};
     }
-    sink_.error(e.where, "X3082", "bitwise operations are not supported on this target");
+    sink_->error(e.where, "X3082", "bitwise operations are not supported on this target");
     return errorValue();
   }
 
@@ -1147,7 +1931,7 @@ class Builder {
   Value arithmetic(const std::string& o, const Value& a, const Value& b, const SourceLocation& at) {
     if (!a.ok || !b.ok) return errorValue();
     if (!a.type.isNumeric() || !b.type.isNumeric()) {
-      sink_.error(at, "X3020", "type mismatch: '{}' {} '{}'", a.type.name(), o, b.type.name());
+      sink_->error(at, "X3020", "type mismatch: '{}' {} '{}'", a.type.name(), o, b.type.name());
       return errorValue();
     }
     Type rt = arithmeticResult(a.type, b.type, at);
@@ -1185,7 +1969,7 @@ class Builder {
       Comps q = truncate(divide(x, y));
       return Value{rt, op(IrOp::Add, n, {x, negate(op(IrOp::Mul, n, {y, q}))}), true};
     }
-    sink_.error(at, "X3082", "bitwise operator '{}' is not supported on this target", o);
+    sink_->error(at, "X3082", "bitwise operator '{}' is not supported on this target", o);
     return errorValue();
   }
 
@@ -1233,7 +2017,7 @@ class Builder {
 
   void writeLValue(const LValue& lv, const Comps& value, const SourceLocation& at) {
     if (lv.var->isConst || lv.var->uniform) {
-      sink_.error(at, "X3025", "l-value specifies const object");
+      sink_->error(at, "X3025", "l-value specifies const object");
       return;
     }
     uninitialized_.erase(lv.var);
@@ -1254,7 +2038,7 @@ class Builder {
     switch (e.kind) {
       case ExprKind::Name: {
         Variable* v = lookup(e.op);
-        if (!v) { sink_.error(e.where, "X3004", "undeclared identifier '{}'", e.op); return lv; }
+        if (!v) { sink_->error(e.where, "X3004", "undeclared identifier '{}'", e.op); return lv; }
         if (v->uniform && v->uniformIndex >= 0) bindUniform(*v);
         lv.var = v;
         lv.type = v->type;
@@ -1278,7 +2062,7 @@ class Builder {
         Value idx = expr(*e.args[1]);
         if (!idx.ok) return LValue{};
         if (!idx.comps[0].literal()) {
-          sink_.error(e.where, "X3500", "array reference cannot be used as an l-value unless its index is a literal expression");
+          sink_->error(e.where, "X3500", "array reference cannot be used as an l-value unless its index is a literal expression");
           return LValue{};
         }
         int i = int(idx.comps[0].k);
@@ -1291,7 +2075,7 @@ class Builder {
         return lv;
       }
       default:
-        sink_.error(e.where, "X3025", "expression is not an l-value");
+        sink_->error(e.where, "X3025", "expression is not an l-value");
         return lv;
     }
   }
@@ -1310,36 +2094,36 @@ class Builder {
         }
         offset += n;
       }
-      sink_.error(at, "X3018", "invalid subscript '{}'", name);
+      sink_->error(at, "X3018", "invalid subscript '{}'", name);
       return false;
     }
     if (!t.isNumeric()) {
-      sink_.error(at, "X3018", "invalid subscript '{}' on '{}'", name, t.name());
+      sink_->error(at, "X3018", "invalid subscript '{}' on '{}'", name, t.name());
       return false;
     }
     if (t.cls == TypeClass::Matrix) {
       // _m00 / _11 forms, repeated
       size_t i = 0;
       while (i < name.size()) {
-        if (name[i] != '_') { sink_.error(at, "X3018", "invalid subscript '{}'", name); return false; }
+        if (name[i] != '_') { sink_->error(at, "X3018", "invalid subscript '{}'", name); return false; }
         int r, c;
         if (i + 3 < name.size() + 0 && name[i + 1] == 'm' && i + 3 <= name.size() - 1 + 1) {
-          if (i + 4 > name.size()) { sink_.error(at, "X3018", "invalid subscript '{}'", name); return false; }
+          if (i + 4 > name.size()) { sink_->error(at, "X3018", "invalid subscript '{}'", name); return false; }
           r = name[i + 2] - '0';
           c = name[i + 3] - '0';
           i += 4;
         } else {
-          if (i + 3 > name.size()) { sink_.error(at, "X3018", "invalid subscript '{}'", name); return false; }
+          if (i + 3 > name.size()) { sink_->error(at, "X3018", "invalid subscript '{}'", name); return false; }
           r = name[i + 1] - '1';
           c = name[i + 2] - '1';
           i += 3;
         }
-        if (r < 0 || r >= t.rows || c < 0 || c >= t.cols) { sink_.error(at, "X3018", "invalid subscript '{}'", name); return false; }
+        if (r < 0 || r >= t.rows || c < 0 || c >= t.cols) { sink_->error(at, "X3018", "invalid subscript '{}'", name); return false; }
         sel.push_back(r * t.cols + c);
       }
     } else {
       int n = t.components();
-      if (name.size() > 4) { sink_.error(at, "X3018", "invalid subscript '{}'", name); return false; }
+      if (name.size() > 4) { sink_->error(at, "X3018", "invalid subscript '{}'", name); return false; }
       bool xyzw = false, rgba = false;
       for (char ch : name) {
         int k = -1;
@@ -1351,17 +2135,17 @@ class Builder {
           default: break;
         }
         if (k < 0 || k >= n) {
-          sink_.error(at, "X3018", "invalid subscript '{}' on '{}'", name, t.name());
+          sink_->error(at, "X3018", "invalid subscript '{}' on '{}'", name, t.name());
           return false;
         }
         sel.push_back(k);
       }
-      if (xyzw && rgba) { sink_.error(at, "X3018", "invalid subscript '{}': mixes xyzw and rgba", name); return false; }
+      if (xyzw && rgba) { sink_->error(at, "X3018", "invalid subscript '{}': mixes xyzw and rgba", name); return false; }
     }
     if (forWrite) {
       std::set<int> seen(sel.begin(), sel.end());
       if (seen.size() != sel.size()) {
-        sink_.error(at, "X3025", "l-value specifies a component more than once");
+        sink_->error(at, "X3025", "l-value specifies a component more than once");
         return false;
       }
     }
@@ -1373,25 +2157,25 @@ class Builder {
 
   bool indexSelect(const Type& t, int i, const SourceLocation& at, std::vector<int>& sel, Type& out) {
     if (t.isArray()) {
-      if (i < 0 || i >= t.arraySize) { sink_.error(at, "X3504", "array index {} out of bounds (size {})", i, t.arraySize); return false; }
+      if (i < 0 || i >= t.arraySize) { sink_->error(at, "X3504", "array index {} out of bounds (size {})", i, t.arraySize); return false; }
       int n = t.element->flatSize();
       for (int k = 0; k < n; ++k) sel.push_back(i * n + k);
       out = *t.element;
       return true;
     }
     if (t.cls == TypeClass::Matrix) {
-      if (i < 0 || i >= t.rows) { sink_.error(at, "X3504", "matrix row index {} out of bounds", i); return false; }
+      if (i < 0 || i >= t.rows) { sink_->error(at, "X3504", "matrix row index {} out of bounds", i); return false; }
       for (int c = 0; c < t.cols; ++c) sel.push_back(i * t.cols + c);
       out = Type::vector(t.base, t.cols);
       return true;
     }
     if (t.cls == TypeClass::Vector) {
-      if (i < 0 || i >= t.cols) { sink_.error(at, "X3504", "vector index {} out of bounds", i); return false; }
+      if (i < 0 || i >= t.cols) { sink_->error(at, "X3504", "vector index {} out of bounds", i); return false; }
       sel.push_back(i);
       out = Type::scalar(t.base);
       return true;
     }
-    sink_.error(at, "X3121", "array, matrix, vector, or indexable object type expected in index expression");
+    sink_->error(at, "X3121", "array, matrix, vector, or indexable object type expected in index expression");
     return false;
   }
 
@@ -1402,11 +2186,11 @@ class Builder {
     Type t;
     if (base.type.isScalar()) {  // scalar.xxx
       for (char ch : e.op) {
-        if (ch != 'x' && ch != 'r') { sink_.error(e.where, "X3018", "invalid subscript '{}'", e.op); return errorValue(); }
+        if (ch != 'x' && ch != 'r') { sink_->error(e.where, "X3018", "invalid subscript '{}'", e.op); return errorValue(); }
         sel.push_back(0);
       }
       t = sel.size() == 1 ? Type::scalar(base.type.base) : Type::vector(base.type.base, int(sel.size()));
-      if (sel.size() > 4) { sink_.error(e.where, "X3018", "invalid subscript '{}'", e.op); return errorValue(); }
+      if (sel.size() > 4) { sink_->error(e.where, "X3018", "invalid subscript '{}'", e.op); return errorValue(); }
     } else if (!memberSelect(base.type, e.op, e.where, sel, t, false)) {
       return errorValue();
     }
@@ -1420,6 +2204,10 @@ class Builder {
     Value base = expr(*e.args[0]);
     Value idx = expr(*e.args[1]);
     if (!base.ok || !idx.ok) return errorValue();
+    if (!idx.comps[0].literal() && idx.type.isNumeric()) {
+      std::optional<UniformArray> ua = uniformArray(*e.args[0]);
+      if (ua && ua->type.isArray() && registerRows(*ua->type.element) > 0) return relativeIndex(e, *ua, idx);
+    }
     if (idx.comps[0].literal()) {
       std::vector<int> sel;
       Type t;
@@ -1433,7 +2221,7 @@ class Builder {
     int count = base.type.isArray() ? base.type.arraySize : base.type.cls == TypeClass::Matrix ? base.type.rows
                                                                                               : base.type.components();
     if (count > 64) {
-      sink_.error(e.where, "X3500", "dynamic index into an array of {} elements is not supported for {}", count,
+      sink_->error(e.where, "X3500", "dynamic index into an array of {} elements is not supported for {}", count,
                   opt_.version.name());
       return errorValue();
     }
@@ -1455,6 +2243,42 @@ class Builder {
     return result;
   }
 
+  // uniform[index] with a run-time index: vertex shaders read the element's registers
+  // relative to the address register, c[a0.x + first row]; a0.x holds index * (registers
+  // per element). Pixel shaders have no address register for constants.
+  Value relativeIndex(const Expr& e, const UniformArray& ua, const Value& idx) {
+    if (isPixel()) {
+      sink_->error(e.where, "X3512", "array index must be a literal expression: {} cannot index constant registers "
+                  "with a run-time value", opt_.version.name());
+      return errorValue();
+    }
+    const Type& elem = *ua.type.element;
+    const int stride = registerRows(elem);
+    // HLSL converts the index to int (toward zero); a negative index is out of bounds
+    // and undefined, so floor serves. vs_1_1 loads a0.x with mov, which floors itself.
+    Comps ix = convert(idx, Type::scalar(BaseType::Float), e.where).comps;
+    const bool vs11 = !opt_.version.atLeast(2, 0);
+    if (!isIntegral(idx.type.base) && !(vs11 && stride == 1)) ix = floorOf(ix);
+    if (stride > 1) ix = op(IrOp::Mul, 1, {ix, Comps{lit(float(stride))}});
+    ir_.uniforms[ua.uniform].used = true;
+    std::vector<int> rows;
+    for (int r = 0; r < stride; ++r) {
+      IrInst inst;
+      inst.op = IrOp::UniformRel;
+      inst.width = 4;
+      inst.srcCount = 1;
+      inst.src[0] = source(ix);
+      inst.index = ((ua.row + r) << 16) | ua.uniform;
+      inst.where = where_;
+      std::vector<int> key{int(IrOp::UniformRel), inst.index, inst.src[0].reg, inst.src[0].swizzle[0]};
+      if (auto it = cse_.find(key); it != cse_.end()) { rows.push_back(it->second); continue; }
+      int reg = emitInst(std::move(inst));
+      cse_[key] = reg;
+      rows.push_back(reg);
+    }
+    return Value{elem, layoutRows(elem, rows), true};
+  }
+
   Value constructor(const Expr& e) {
     Comps flat;
     bool ok = true;
@@ -1462,7 +2286,7 @@ class Builder {
       Value v = expr(*a);
       if (!v.ok) { ok = false; continue; }
       if (!v.type.isNumeric()) {
-        sink_.error(a->where, "X3014", "incorrect number of arguments to numeric-type constructor");
+        sink_->error(a->where, "X3014", "incorrect number of arguments to numeric-type constructor");
         ok = false;
         continue;
       }
@@ -1477,7 +2301,7 @@ class Builder {
       if (flat.size() == 1 && e.type.isNumeric()) {
         flat.assign(need, flat[0]);
       } else {
-        sink_.error(e.where, "X3014", "incorrect number of arguments to numeric-type constructor: '{}' needs {} components, got {}",
+        sink_->error(e.where, "X3014", "incorrect number of arguments to numeric-type constructor: '{}' needs {} components, got {}",
                     e.type.name(), need, flat.size());
         flat.resize(need, lit(0));
       }
@@ -1501,8 +2325,8 @@ class Builder {
     if (r) return *r;
     bool anyUser = false;
     for (const auto& f : prog_.functions) anyUser |= f->name == e.op;
-    if (anyUser) sink_.error(e.where, "X3013", "'{}': no matching {}-argument function", e.op, e.args.size());
-    else sink_.error(e.where, "X3004", "undeclared identifier '{}'", e.op);
+    if (anyUser) sink_->error(e.where, "X3013", "'{}': no matching {}-argument function", e.op, e.args.size());
+    else sink_->error(e.where, "X3004", "undeclared identifier '{}'", e.op);
     return errorValue();
   }
 
@@ -1546,16 +2370,16 @@ class Builder {
       else if (total == bestCost) ambiguous = true;
     }
     if (!best) {
-      sink_.error(e.where, "X3013", "'{}': no matching {}-argument function", e.op, e.args.size());
+      sink_->error(e.where, "X3013", "'{}': no matching {}-argument function", e.op, e.args.size());
       return errorValue();
     }
-    if (ambiguous) sink_.error(e.where, "X3067", "'{}': ambiguous function call", e.op);
+    if (ambiguous) sink_->error(e.where, "X3067", "'{}': ambiguous function call", e.op);
     if (!best->body) {
-      sink_.error(e.where, "X3080", "'{}': function is declared but not defined", e.op);
+      sink_->error(e.where, "X3080", "'{}': function is declared but not defined", e.op);
       return errorValue();
     }
     if (callStack_.count(best)) {
-      sink_.error(e.where, "X3500", "'{}': recursive functions are not allowed", e.op);
+      sink_->error(e.where, "X3500", "'{}': recursive functions are not allowed", e.op);
       return errorValue();
     }
     // Bind parameters in a fresh scope chain: only globals are visible inside.
@@ -1589,7 +2413,7 @@ class Builder {
       Value v; v.type = Type(); v.comps = {lit(0)}; return v;
     }
     if (!frame.hasReturnValue) {
-      if (!best->syntaxErrors) sink_.error(best->where, "X3080", "'{}': function must return a value", best->name);
+      if (!best->syntaxErrors) sink_->error(best->where, "X3080", "'{}': function must return a value", best->name);
       return errorValue();
     }
     return Value{best->returnType, frame.returnValue, true};
@@ -1614,13 +2438,13 @@ class Builder {
 
   bool expectArgs(const Expr& e, const std::vector<Value>& args, size_t n) {
     if (args.size() != n) {
-      sink_.error(e.where, "X3013", "'{}': intrinsic function takes {} argument{}, {} given", e.op, n, n == 1 ? "" : "s",
+      sink_->error(e.where, "X3013", "'{}': intrinsic function takes {} argument{}, {} given", e.op, n, n == 1 ? "" : "s",
                   args.size());
       return false;
     }
     for (const Value& a : args)
       if (!a.type.isNumeric() && !a.type.isSampler() && !(opt_.compat() && a.type.cls == TypeClass::Object)) {
-        sink_.error(e.where, "X3013", "'{}': no matching intrinsic overload for '{}'", e.op, a.type.name());
+        sink_->error(e.where, "X3013", "'{}': no matching intrinsic overload for '{}'", e.op, a.type.name());
         return false;
       }
     return true;
@@ -1654,6 +2478,49 @@ class Builder {
     int n = int(a.size());
     Comps l = scalarOp(IrOp::Log2, a);
     return scale == 1 ? l : op(IrOp::Mul, n, {l, Comps(n, lit(scale))});
+  }
+
+  // sin and cos of each component (first: sin, second: cos). The argument is reduced to
+  // [-pi, pi) once for the whole vector: r = frc(x / 2pi + 0.5) * 2pi - pi, which differs
+  // from x by a whole number of turns. SM2+ then runs one sincos per component (cos in .x,
+  // sin in .y), shared by sin, cos, tan and sincos of the same value. vs_1_1 has no
+  // sincos: a series in the half angle h = r / 2 in [-pi/2, pi/2), as fxc lowers it:
+  //   sin h = h (1 - h^2/3! + h^4/5! - h^6/7! + h^8/9!)   (next term h^11/11! < 3.6e-6)
+  //   cos h = 1 - h^2/2! + h^4/4! - h^6/6! + h^8/8!       (next term h^10/10! < 2.6e-5)
+  //   sin r = 2 sin h cos h, cos r = 1 - 2 sin^2 h.
+  std::pair<Comps, Comps> sinCosOf(const Comps& a) {
+    int n = int(a.size());
+    if (allLiteral(a)) {
+      Comps s, c;
+      for (const Comp& k : a) { s.push_back(lit(std::sin(k.k))); c.push_back(lit(std::cos(k.k))); }
+      return {s, c};
+    }
+    auto splat = [&](float v) { return Comps(n, lit(v)); };
+    Comps turns = op(IrOp::Frc, n, {op(IrOp::Mad, n, {a, splat(0.159154943f), splat(0.5f)})});
+    if (opt_.version.major >= 2) {
+      Comps r = op(IrOp::Mad, n, {turns, splat(6.28318548f), splat(-3.14159274f)});
+      Comps s, c;
+      for (int i = 0; i < n; ++i) {
+        Comps sc = op(IrOp::SinCos, 2, {Comps{r[i]}});
+        c.push_back(sc[0]);
+        s.push_back(sc[1]);
+      }
+      return {s, c};
+    }
+    Comps h = op(IrOp::Mad, n, {turns, splat(3.14159274f), splat(-1.57079637f)});
+    Comps h2 = op(IrOp::Mul, n, {h, h});
+    auto series = [&](std::initializer_list<float> k) {  // highest power first
+      auto it = k.begin();
+      Comps p = splat(*it++);
+      for (; it != k.end(); ++it) p = op(IrOp::Mad, n, {p, h2, splat(*it)});
+      return p;
+    };
+    Comps sinH = op(IrOp::Mul, n, {h, series({1 / 362880.0f, -1 / 5040.0f, 1 / 120.0f, -1 / 6.0f, 1.0f})});
+    Comps cosH = series({1 / 40320.0f, -1 / 720.0f, 1 / 24.0f, -0.5f, 1.0f});
+    Comps sinH2 = op(IrOp::Add, n, {sinH, sinH});  // 2 sin h
+    Comps s = op(IrOp::Mul, n, {sinH2, cosH});
+    Comps c = op(IrOp::Mad, n, {negate(sinH2), sinH, splat(1.0f)});
+    return {s, c};
   }
 
   // Polynomial atan on [-1, 1] scaled to the full range (max error ~1e-5).
@@ -1721,11 +2588,13 @@ class Builder {
     if (name == "log") return unaryFloat([&](const Comps& a) { return logOf(a, 0.69314718f); });
     if (name == "log2") return unaryFloat([&](const Comps& a) { return logOf(a, 1); });
     if (name == "log10") return unaryFloat([&](const Comps& a) { return logOf(a, 0.30103f); });
-    if (name == "sin") return unaryFloat([&](const Comps& a) { return scalarOp(IrOp::Sin, a); });
-    if (name == "cos") return unaryFloat([&](const Comps& a) { return scalarOp(IrOp::Cos, a); });
+    if (name == "sin") return unaryFloat([&](const Comps& a) { return sinCosOf(a).first; });
+    if (name == "cos") return unaryFloat([&](const Comps& a) { return sinCosOf(a).second; });
     if (name == "tan") return unaryFloat([&](const Comps& a) {
+      // sin / cos from one shared sincos per component
       int n = int(a.size());
-      return op(IrOp::Mul, n, {scalarOp(IrOp::Sin, a), scalarOp(IrOp::Rcp, scalarOp(IrOp::Cos, a))});
+      auto [sn, cs] = sinCosOf(a);
+      return op(IrOp::Mul, n, {sn, scalarOp(IrOp::Rcp, cs)});
     });
     if (name == "sinh" || name == "cosh" || name == "tanh") return unaryFloat([&](const Comps& a) {
       int n = int(a.size());
@@ -1826,7 +2695,7 @@ class Builder {
     if (name == "dot") {
       if (!expectArgs(e, args, 2)) return errorValue();
       Type t = commonType(args, at);
-      if (t.cls == TypeClass::Matrix) { sink_.error(at, "X3013", "dot: vector arguments expected"); return errorValue(); }
+      if (t.cls == TypeClass::Matrix) { sink_->error(at, "X3013", "dot: vector arguments expected"); return errorValue(); }
       Value a = convert(args[0], t, at), b = convert(args[1], t, at);
       return Value{Type::scalar(t.base), dot(a.comps, b.comps), true};
     }
@@ -1902,7 +2771,7 @@ class Builder {
     }
     if (name == "clip") {
       if (!expectArgs(e, args, 1)) return errorValue();
-      if (!isPixel()) { sink_.error(at, "X3539", "clip is only valid in pixel shaders"); return errorValue(); }
+      if (!isPixel()) { sink_->error(at, "X3539", "clip is only valid in pixel shaders"); return errorValue(); }
       Value a = floatOf(args[0], at);
       Comp act = active();
       Comps c = a.comps;
@@ -1933,16 +2802,16 @@ class Builder {
     }
     if (name == "ddx" || name == "ddy") {
       if (!expectArgs(e, args, 1)) return errorValue();
-      if (!isPixel()) { sink_.error(at, "X3537", "{} is not available in vertex shaders", name); return errorValue(); }
+      if (!isPixel()) { sink_->error(at, "X3537", "{} is not available in vertex shaders", name); return errorValue(); }
       if (!opt_.version.atLeast(2, 1)) {
-        sink_.error(at, "X3537", "{} needs ps_2_x or ps_3_0; {} has no gradient instructions", name, opt_.version.name());
+        sink_->error(at, "X3537", "{} needs ps_2_x or ps_3_0; {} has no gradient instructions", name, opt_.version.name());
         return errorValue();
       }
       Value a = floatOf(args[0], at);
       return Value{a.type, op(name == "ddx" ? IrOp::Dsx : IrOp::Dsy, W(a.type), {a.comps}), true};
     }
     if (name == "noise") {
-      sink_.error(at, "X3533", "noise is not available in shaders; it only runs in texture fills");
+      sink_->error(at, "X3533", "noise is not available in shaders; it only runs in texture fills");
       return errorValue();
     }
     if (name == "transpose") {
@@ -1958,7 +2827,7 @@ class Builder {
     if (name == "determinant") {
       if (!expectArgs(e, args, 1)) return errorValue();
       const Type& t = args[0].type;
-      if (t.cls != TypeClass::Matrix || t.rows != t.cols) { sink_.error(at, "X3013", "determinant needs a square matrix"); return errorValue(); }
+      if (t.cls != TypeClass::Matrix || t.rows != t.cols) { sink_->error(at, "X3013", "determinant needs a square matrix"); return errorValue(); }
       return Value{Type::scalar(BaseType::Float), determinant(args[0].comps, t.rows), true};
     }
     if (name == "modf") {
@@ -1982,7 +2851,7 @@ class Builder {
     if (name == "sincos") {
       if (!expectArgs(e, args, 3)) return errorValue();
       Value a = floatOf(args[0], at);
-      Comps s = scalarOp(IrOp::Sin, a.comps), c = scalarOp(IrOp::Cos, a.comps);
+      auto [s, c] = sinCosOf(a.comps);
       LValue ls = lvalue(*e.args[1]), lc = lvalue(*e.args[2]);
       if (ls.var) writeLValue(ls, convert(Value{a.type, s, true}, ls.type, at).comps, at);
       if (lc.var) writeLValue(lc, convert(Value{a.type, c, true}, lc.type, at).comps, at);
@@ -2105,16 +2974,16 @@ class Builder {
     if (it == bases.end()) return std::nullopt;
     size_t want = variant == "grad" ? 4 : 2;
     if (args.size() != want) {
-      sink_.error(at, "X3013", "'{}': intrinsic function takes {} arguments", name, want);
+      sink_->error(at, "X3013", "'{}': intrinsic function takes {} arguments", name, want);
       return errorValue();
     }
     bool textureAsSampler = opt_.compat() && args[0].type.cls == TypeClass::Object && args[0].type.base == BaseType::Texture;
     if ((!args[0].type.isSampler() && !textureAsSampler) || args[0].comps.empty() || !args[0].comps[0].sampler) {
-      sink_.error(at, "X3013", "'{}': first argument must be a sampler", name);
+      sink_->error(at, "X3013", "'{}': first argument must be a sampler", name);
       return errorValue();
     }
     int sampler = int(args[0].comps[0].k);
-    if (sampler < 0) { sink_.error(at, "X3013", "'{}': sampler is not a global sampler", name); return errorValue(); }
+    if (sampler < 0) { sink_->error(at, "X3013", "'{}': sampler is not a global sampler", name); return errorValue(); }
     SamplerDim dim = it->second.first;
     IrSampler& s = ir_.samplers[sampler];
     if (s.dim == SamplerDim::Any) s.dim = dim;
@@ -2125,24 +2994,24 @@ class Builder {
     if (variant == "lod") { o = IrOp::TexLod; coordWidth = 4; }
     if (variant == "grad") o = IrOp::TexGrad;
     if (!isPixel() && o != IrOp::TexLod) {
-      sink_.error(at, "X3537", "'{}' is not available in vertex shaders; use tex*lod (vs_3_0)", name);
+      sink_->error(at, "X3537", "'{}' is not available in vertex shaders; use tex*lod (vs_3_0)", name);
       return errorValue();
     }
     if (!isPixel() && !opt_.version.atLeast(3, 0)) {
-      sink_.error(at, "X3537", "vertex texture fetch needs vs_3_0, not {}", opt_.version.name());
+      sink_->error(at, "X3537", "vertex texture fetch needs vs_3_0, not {}", opt_.version.name());
       return errorValue();
     }
     if (o == IrOp::TexLod && isPixel() && !opt_.version.atLeast(3, 0)) {
-      sink_.error(at, "X3537", "'{}' needs ps_3_0 (texldl), not {}", name, opt_.version.name());
+      sink_->error(at, "X3537", "'{}' needs ps_3_0 (texldl), not {}", name, opt_.version.name());
       return errorValue();
     }
     if (o == IrOp::TexGrad && !opt_.version.atLeast(2, 1)) {
-      sink_.error(at, "X3537", "'{}' needs ps_2_x or ps_3_0 (texldd), not {}", name, opt_.version.name());
+      sink_->error(at, "X3537", "'{}' needs ps_2_x or ps_3_0 (texldd), not {}", name, opt_.version.name());
       return errorValue();
     }
     Value coord = floatOf(args[1], at);
     if (coord.type.components() < coordWidth) {
-      sink_.error(at, "X3017", "'{}': texture coordinate needs {} components, '{}' has {}", name, coordWidth,
+      sink_->error(at, "X3017", "'{}': texture coordinate needs {} components, '{}' has {}", name, coordWidth,
                   coord.type.name(), coord.type.components());
       return errorValue();
     }
@@ -2175,7 +3044,8 @@ class Builder {
 
   const Program& prog_;
   BuildOptions opt_;
-  DiagnosticSink& sink_;
+  DiagnosticSink* sink_;  // a scratch sink while a region is built on trial
+  const shader::VersionRules* rules_;
   IrProgram ir_;
   SourceLocation where_;
   std::vector<std::map<std::string, Variable*>> scopes_;
@@ -2189,6 +3059,7 @@ class Builder {
   std::vector<Comp> conditions_;
   std::vector<FunctionFrame> functions_;
   std::vector<LoopFrame> loops_;
+  int realLoops_ = 0;  // rep … endrep regions open
   std::set<const FunctionDecl*> callStack_;
 };
 

@@ -6,6 +6,9 @@
 //   4. legalise operands (swizzles a version cannot read, read-port limits);
 //   5. allocate temporaries (linear scan);
 //   6. write dcl/def, the constant table and the instruction list.
+// Flow-control markers become rep/if_comp/if b#/else/endif/break_comp in place;
+// registers written by Assign (variables of those regions) are ordinary temps whose
+// live ranges cover every loop they are read in.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -47,6 +50,7 @@ struct MSrc {
   Map swizzle = kIdentity;  // logical (vreg) or physical (fixed) components
   bool negate = false;
   bool absolute = false;
+  bool relative = false;  // fixed register indexed by a0.x: c[a0.x + index]
   int physicalOf = -1;  // names vreg's register with a physical swizzle
 };
 
@@ -94,7 +98,9 @@ class CodeGen {
     loc_.assign(ir_.regWidth.size(), Loc{});
     def_.assign(ir_.regWidth.size(), -1);
     for (size_t i = 0; i < ir_.code.size(); ++i)
-      if (ir_.code[i].dst >= 0) def_[ir_.code[i].dst] = int(i);
+      if (ir_.code[i].dst >= 0 && ir_.code[i].op != IrOp::Assign) def_[ir_.code[i].dst] = int(i);
+    for (const IrInst& in : ir_.code)
+      if (in.op == IrOp::Assign) def_[in.dst] = -1;  // a variable: no single producer
     countUses();
     placeInputs();
     placeUniformsAndSamplers();
@@ -102,7 +108,9 @@ class CodeGen {
     placeSpecialResults();
     coalesceOutputs();
     coalesceGathers();
-    for (size_t i = 0; i < ir_.code.size(); ++i) select(ir_.code[i]);
+    coalesceAssigns();
+    for (size_t i = 0; i < ir_.code.size(); ++i)
+      if (!assignedInPlace_.count(int(i))) select(ir_.code[i]);
     writeOutputs();
     if (sink_.hasErrors()) return out;
     legalise();
@@ -241,9 +249,61 @@ class CodeGen {
       ir_.samplers[s].registerIndex = nextS;
       sTaken[nextS++] = true;
     }
+    placeFlowUniforms();
     int limit = constLimit();
     if (firstFreeConst_ > limit)
       sink_.error(entryWhere_, "X4550", "{} has {} constant registers, the uniforms need {}", v_.name(), limit, firstFreeConst_);
+  }
+
+  // Int uniforms counting [loop]s get i# registers, bool uniforms of [branch]es b#.
+  void placeFlowUniforms() {
+    for (int pass = 0; pass < 2; ++pass)
+      for (IrUniform& u : ir_.uniforms) {
+        if (!u.loopCount && !u.branchBool) continue;
+        std::vector<bool>& taken = u.loopCount ? intTaken_ : boolTaken_;
+        const char file = u.loopCount ? 'i' : 'b';
+        int r = u.decl ? parseRegisterBinding(u.decl->registerBinding, file) : -1;
+        if (pass == 0) {  // explicit bindings first
+          if (r < 0) continue;
+          if (r >= 16) {
+            sink_.error(u.decl->where, "X4551", "'{}': {} has {}0..{}15", u.name, v_.name(), file, file);
+            continue;
+          }
+          if (u.used)
+            sink_.error(u.decl->where, "X4551",
+                        "'{}' is a {} register for flow control and is also read as a value; {} gives a uniform "
+                        "one register set",
+                        u.name, u.loopCount ? "loop count (i#)" : "branch condition (b#)", v_.name());
+          u.flowRegister = r;
+          taken[r] = true;
+          continue;
+        }
+        if (r >= 0) continue;
+        if (u.used)
+          sink_.error(u.decl ? u.decl->where : entryWhere_, "X4551",
+                      "'{}' is a {} register for flow control and is also read as a value; {} gives a uniform "
+                      "one register set",
+                      u.name, u.loopCount ? "loop count (i#)" : "branch condition (b#)", v_.name());
+        auto free = std::find(taken.begin(), taken.end(), false);
+        if (free == taken.end()) {
+          sink_.error(entryWhere_, "X4551", "{} has 16 {} registers", v_.name(), u.loopCount ? "int" : "bool");
+          continue;
+        }
+        u.flowRegister = int(free - taken.begin());
+        *free = true;
+      }
+  }
+
+  // i# holding a literal rep count (defi), shared by equal counts.
+  int repCountRegister(int count) {
+    if (auto it = repCounts_.find(count); it != repCounts_.end()) return it->second;
+    auto free = std::find(intTaken_.begin(), intTaken_.end(), false);
+    if (free == intTaken_.end()) {
+      sink_.error(entryWhere_, "X4551", "{} has 16 int registers; the loops need more", v_.name());
+      return 0;
+    }
+    *free = true;
+    return repCounts_[count] = int(free - intTaken_.begin());
   }
 
   int constLimit() const {
@@ -313,14 +373,11 @@ class CodeGen {
     return r;
   }
 
-  // sincos writes .x (cos) and .y (sin): those results live in that component.
+  // sincos writes .x (cos) and .y (sin) of its own register.
   void placeSpecialResults() {
-    for (const IrInst& in : ir_.code) {
-      if (in.op == IrOp::Sin && sincosAvailable()) { loc_[in.dst].map = {1, 1, 1, 1}; fixedMap_.insert(in.dst); }
-      if (in.op == IrOp::Cos && sincosAvailable()) { loc_[in.dst].map = {0, 0, 0, 0}; fixedMap_.insert(in.dst); }
-    }
+    for (const IrInst& in : ir_.code)
+      if (in.op == IrOp::SinCos) fixedMap_.insert(in.dst);
   }
-  bool sincosAvailable() const { return v_.major >= 2; }
 
   // ---- 2. coalescing ---------------------------------------------------------------------------
   // Ops whose destination may land in any component mapping.
@@ -330,7 +387,7 @@ class CodeGen {
     switch (ir_.code[d].op) {
       case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: case IrOp::Combine: case IrOp::Kill:
       case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad:
-      case IrOp::Nrm: case IrOp::Crs: case IrOp::Sin: case IrOp::Cos: case IrOp::Frc:
+      case IrOp::Nrm: case IrOp::Crs: case IrOp::SinCos: case IrOp::Frc: case IrOp::Assign:
         return false;
       default:
         return true;
@@ -351,6 +408,7 @@ class CodeGen {
       if (pos[c] < 0) return false;
       map[c] = uint8_t(pos[c]);
     }
+    for (int c = width; c < 4; ++c) map[c] = map[width - 1];  // unused, but a valid component
     return true;
   }
 
@@ -438,6 +496,38 @@ class CodeGen {
     }
   }
 
+  // A value whose only reader is an Assign (the end of a loop or branch body) is
+  // computed in the variable's register, when nothing between the two reads or writes
+  // that register and no flow-control marker lies between them. (Every producer that
+  // may be remapped writes its destination once, after reading its sources.)
+  void coalesceAssigns() {
+    for (size_t i = 0; i < ir_.code.size(); ++i) {
+      const IrInst& a = ir_.code[i];
+      if (a.op != IrOp::Assign) continue;
+      const IrSrc& s = a.src[0];
+      const int p = s.reg, var = a.dst;
+      if (s.negate || s.absolute || ir_.regWidth[p] != a.width || uses_[p] != 1 || loc_[p].placed || !remappable(p))
+        continue;
+      bool identity = true;
+      for (int c = 0; c < a.width; ++c) identity &= s.swizzle[c] == c;
+      const int d = def_[p];
+      if (!identity || d < 0 || size_t(d) > i) continue;
+      bool clear = true;
+      for (size_t k = size_t(d) + 1; k < i && clear; ++k) {
+        const IrInst& in = ir_.code[k];
+        if (isFlowMarker(in.op) || (in.op == IrOp::Assign && in.dst == var)) clear = false;
+        for (int j = 0; j < in.srcCount; ++j) clear &= in.src[j].reg != var;
+        for (const IrPart& part : in.parts) clear &= part.reg != var;
+      }
+      if (!clear) continue;
+      Loc& l = loc_[p];
+      l.placed = true;
+      l.aliasOf = var;
+      l.map = kIdentity;
+      assignedInPlace_.insert(int(i));
+    }
+  }
+
   void coalesceGathers() {
     for (const IrInst& in : ir_.code) {
       if (in.op != IrOp::Combine) continue;
@@ -503,6 +593,45 @@ class CodeGen {
     const int d = in.dst;
     switch (in.op) {
       case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: return;
+      case IrOp::Rep: {
+        MSrc count;
+        count.type = RegType::ConstInt;
+        count.index = in.uniform >= 0 ? ir_.uniforms[in.uniform].flowRegister : repCountRegister(in.index);
+        flow(Opcode::Rep, {count});
+        return;
+      }
+      case IrOp::EndRep: flow(Opcode::EndRep, {}); return;
+      case IrOp::If:
+        if (in.uniform >= 0) {
+          MSrc b;
+          b.type = RegType::ConstBool;
+          b.index = ir_.uniforms[in.uniform].flowRegister;
+          b.negate = in.index == 1;  // if !b#
+          flow(Opcode::If, {b});
+        } else {
+          flow(Opcode::IfC, {replicated(in.src[0]), replicated(in.src[1])}, uint8_t(in.compare));
+        }
+        return;
+      case IrOp::Else: flow(Opcode::Else, {}); return;
+      case IrOp::EndIf: flow(Opcode::EndIf, {}); return;
+      case IrOp::Break:
+        if (in.srcCount == 0) flow(Opcode::Break, {});
+        else flow(Opcode::BreakC, {replicated(in.src[0]), replicated(in.src[1])}, uint8_t(in.compare));
+        return;
+      case IrOp::Assign:
+        a0Holds_ = {-1, -1, -1, -1};
+        push(Opcode::Mov, dst(d, w), {src(in.src[0])});
+        return;
+      case IrOp::UniformRel: {
+        loadAddress(in.src[0]);
+        const IrUniform& u = ir_.uniforms[in.index & 0xFFFF];
+        MSrc c;
+        c.type = RegType::Const;
+        c.index = u.firstRegister + (in.index >> 16);
+        c.relative = true;
+        push(Opcode::Mov, dst(d, 4), {c});
+        return;
+      }
       case IrOp::Combine: {
         // One mov per source register (or literal value) for the parts not coalesced.
         std::map<int, uint8_t> byReg;
@@ -595,7 +724,7 @@ class CodeGen {
             Map pair = {swz[c], swz[std::min(c + 1, w - 1)], swz[std::min(c + 1, w - 1)], swz[std::min(c + 1, w - 1)]};
             MSrc s = src(in.src[0]);
             s.swizzle = pair;
-            push(Opcode::Frc, dst(t, std::min(2, w - c)), {s});
+            push(Opcode::Frc, dst(t, 2), {s});  // .xy: vs_1_1 allows only .y and .xy
             MDst md = dst(d, w, in.saturate);
             md.mask = uint8_t((c + 1 < w ? 3u : 1u) << c);
             Map back = {0, 0, 0, 0};
@@ -660,7 +789,7 @@ class CodeGen {
           push(Opcode::Exp, dst(d, 1, in.saturate), {vsrc(t, {0, 0, 0, 0})}, Shape::Scalar);
         }
         return;
-      case IrOp::Sin: case IrOp::Cos: sinCos(in); return;
+      case IrOp::SinCos: sinCos(in); return;
       case IrOp::Dsx: push(Opcode::Dsx, dst(d, w, in.saturate), {src(in.src[0])}); return;
       case IrOp::Dsy: push(Opcode::Dsy, dst(d, w, in.saturate), {src(in.src[0])}); return;
       case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad: {
@@ -680,17 +809,63 @@ class CodeGen {
         return;
       }
       case IrOp::Kill: {
+        // texkill's operand is a destination token: a whole register, no swizzle or
+        // modifier. Anything else is first copied into a temp with all four components.
+        MSrc operand = src(in.src[0]);
+        const int reg = in.src[0].reg;
+        const bool whole = !operand.negate && !operand.absolute && operand.swizzle == kIdentity &&
+                           ir_.regWidth[reg] == 4 && !loc_[reg].placed;
+        if (!whole) {
+          int t = newTemp(4);
+          push(Opcode::Mov, dst(t, 4), {operand});
+          operand = vsrc(t);
+        }
         MInst m;
         m.op = Opcode::TexKill;
         m.hasDst = false;
         m.srcCount = 1;
-        m.src[0] = src(in.src[0]);
+        m.src[0] = operand;
         m.shape = Shape::Positional;
         m.where = where_;
         code_.push_back(m);
         return;
       }
     }
+  }
+
+  MSrc replicated(const IrSrc& s) {
+    MSrc m = src(s);
+    m.swizzle.fill(s.swizzle[0]);
+    return m;
+  }
+
+  // A flow-control instruction (no destination). a0.x is not trusted across one.
+  void flow(Opcode op, std::initializer_list<MSrc> srcs, uint8_t control = 0) {
+    MInst m;
+    m.op = op;
+    m.hasDst = false;
+    for (const MSrc& s : srcs) m.src[m.srcCount++] = s;
+    m.shape = Shape::Scalar;
+    m.control = control;
+    m.where = where_;
+    code_.push_back(m);
+    a0Holds_ = {-1, -1, -1, -1};
+  }
+
+  // a0.x = the value of `s` (mova rounds it in vs_2_0+; vs_1_1's mov floors it), unless
+  // a0.x holds it already.
+  void loadAddress(const IrSrc& s) {
+    const std::array<int, 4> key{s.reg, s.swizzle[0], int(s.negate), int(s.absolute)};
+    if (a0Holds_ == key) return;
+    a0Holds_ = key;
+    MDst a;
+    a.vreg = -1;
+    a.type = RegType::Addr;
+    a.index = 0;
+    a.mask = 0x1;
+    MSrc value = src(s);
+    value.swizzle.fill(s.swizzle[0]);
+    push(v_.atLeast(2, 0) ? Opcode::MovA : Opcode::Mov, a, {value});
   }
 
   // Literal parts of a gather or an output: one mov from a def register holding them
@@ -733,27 +908,23 @@ class CodeGen {
     push(op, dst(in.dst, 1, in.saturate), {a}, Shape::Scalar);
   }
 
+  // The builder has reduced the argument to [-pi, pi]; .x = cos, .y = sin.
   void sinCos(const IrInst& in) {
-    if (!sincosAvailable()) {
-      sink_.error(in.where, "X3500", "sin/cos are not yet supported in {}", v_.name());
+    if (!has(Opcode::SinCos)) {
+      sink_.error(in.where, "X9000", "internal error: {} has no sincos", v_.name());
       return;
     }
-    // Reduce to [-pi, pi]: frc(x / 2pi + 0.5) * 2pi - pi
-    int t = newTemp(1);
     MSrc a = src(in.src[0]);
     a.swizzle.fill(in.src[0].swizzle[0]);
-    push(Opcode::Mad, dst(t, 1), {a, literal(0.159154943f), literal(0.5f)});
-    push(Opcode::Frc, dst(t, 1), {vsrc(t, {0, 0, 0, 0})});
-    push(Opcode::Mad, dst(t, 1), {vsrc(t, {0, 0, 0, 0}), literal(6.28318548f), literal(-3.14159274f)});
-    MDst md = dst(in.dst, 1, in.saturate);
+    MDst md = dst(in.dst, 2, in.saturate);
     if (v_.major >= 3) {
-      push(Opcode::SinCos, md, {vsrc(t, {0, 0, 0, 0})}, Shape::Scalar);
+      push(Opcode::SinCos, md, {a}, Shape::Scalar);
     } else {
       MSrc c1, c2;
       c1.type = c2.type = RegType::Const;
       c1.index = vectorDef({-1.55009923e-6f, -2.17013894e-5f, 0.00260416674f, 0.00026041668f});
       c2.index = vectorDef({-0.020833334f, -0.125f, 1.0f, 0.5f});
-      push(Opcode::SinCos, md, {vsrc(t, {0, 0, 0, 0}), c1, c2}, Shape::Scalar);
+      push(Opcode::SinCos, md, {a, c1, c2}, Shape::Scalar);
     }
   }
 
@@ -940,7 +1111,9 @@ class CodeGen {
       // (a) swizzles the version cannot read: gather the components first.
       for (int s = 0; s < m.srcCount; ++s) {
         MSrc& src = m.src[s];
-        if (src.type == RegType::Sampler && src.vreg < 0) continue;
+        if (src.vreg < 0 && (src.type == RegType::Sampler || src.type == RegType::ConstInt ||
+                             src.type == RegType::ConstBool))
+          continue;
         if (m.op == Opcode::SinCos && s > 0) continue;
         bool texCoord = (m.op == Opcode::Tex || m.op == Opcode::TexKill) && s == 0;
         auto need = sourceNeed(m, src);
@@ -1091,6 +1264,26 @@ class CodeGen {
         last[r] = std::max(last[r], i);
       }
     }
+    // A register read inside a loop but written before it is read again by the next
+    // iteration: it stays live to the loop's end. (Nested loops: until nothing grows.)
+    std::vector<std::pair<int, int>> loops;
+    std::vector<int> open;
+    for (int i = 0; i < int(code_.size()); ++i) {
+      if (code_[i].op == Opcode::Rep || code_[i].op == Opcode::Loop) open.push_back(i);
+      if ((code_[i].op == Opcode::EndRep || code_[i].op == Opcode::EndLoop) && !open.empty()) {
+        loops.emplace_back(open.back(), i);
+        open.pop_back();
+      }
+    }
+    for (bool grew = !loops.empty(); grew;) {
+      grew = false;
+      for (auto [begin, end] : loops)
+        for (size_t v = 0; v < n; ++v)
+          if (first[v] >= 0 && first[v] < begin && last[v] > begin && last[v] < end) {
+            last[v] = end;
+            grew = true;
+          }
+    }
     const shader::RegisterRule* rule = shader::findRegisterRule(*rules_, RegType::Temp);
     int limit = rule ? rule->count : 12;
     physTemp_.assign(n, -1);
@@ -1165,9 +1358,14 @@ class CodeGen {
                                    need[2] == 255 ? uint8_t(2) : need[2], need[3] == 255 ? uint8_t(3) : need[3]};
     if (s.physicalOf >= 0 || s.vreg < 0) swz = s.swizzle;
     if (p.type == RegType::Sampler) swz = kIdentity;
+    if (s.relative) {
+      p.relative = true;
+      p.rel.type = RegType::Addr;
+      p.rel.component = 0;
+    }
     p.swizzle = uint8_t(swz[0] | (swz[1] << 2) | (swz[2] << 4) | (swz[3] << 6));
     if (s.absolute) p.mod = s.negate ? SrcMod::AbsNeg : SrcMod::Abs;
-    else if (s.negate) p.mod = SrcMod::Neg;
+    else if (s.negate) p.mod = p.type == RegType::ConstBool ? SrcMod::Not : SrcMod::Neg;
     return p;
   }
 
@@ -1183,6 +1381,16 @@ class CodeGen {
       in.dst.type = RegType::Const;
       in.dst.index = uint16_t(d.reg);
       for (int c = 0; c < 4; ++c) std::memcpy(&in.literal[c], &d.values[c], 4);
+      out.instructions.push_back(in);
+    }
+    // defi: literal rep counts
+    for (auto [count, reg] : repCounts_) {
+      Instruction in;
+      in.opcode = Opcode::DefI;
+      in.hasDst = true;
+      in.dst.type = RegType::ConstInt;
+      in.dst.index = uint16_t(reg);
+      in.literal = {uint32_t(count), 0, 0, 0};
       out.instructions.push_back(in);
     }
     // dcl inputs
@@ -1248,6 +1456,13 @@ class CodeGen {
       if (m.hasDst) in.dst = physicalDst(m.dst);
       in.srcCount = uint8_t(m.srcCount);
       for (int s = 0; s < m.srcCount; ++s) in.src[s] = physicalSrc(m, m.src[s]);
+      if (m.op == Opcode::TexKill) {  // the operand is encoded as a destination
+        in.hasDst = true;
+        in.dst.type = in.src[0].type;
+        in.dst.index = in.src[0].index;
+        in.dst.writeMask = 0xF;
+        in.srcCount = 0;
+      }
       in.pos = {m.where.line, m.where.column};
       out.instructions.push_back(in);
     }
@@ -1259,7 +1474,17 @@ class CodeGen {
     table.target = v_.name();
     table.versionToken = v_.token();
     for (const IrUniform& u : ir_.uniforms) {
-      if (!u.used || u.preshaderOutput) continue;
+      if (u.flowRegister < 0) continue;
+      ConstantTable::Constant c;
+      c.name = u.name;
+      c.registerSet = u.loopCount ? ConstantTable::RegisterSet::Int4 : ConstantTable::RegisterSet::Bool;
+      c.registerIndex = u.flowRegister;
+      c.registerCount = 1;
+      c.type = u.type;
+      table.constants.push_back(c);
+    }
+    for (const IrUniform& u : ir_.uniforms) {
+      if (!u.used || u.flowRegister >= 0 || u.preshaderOutput) continue;
       ConstantTable::Constant c;
       c.name = u.name;
       c.registerSet = ConstantTable::RegisterSet::Float4;
@@ -1317,6 +1542,10 @@ class CodeGen {
   int firstFreeConst_ = 0;
   bool constOverflowReported_ = false;
   std::vector<MInst> code_;
+  std::array<int, 4> a0Holds_{-1, -1, -1, -1};  // the source a0.x was last loaded from
+  std::vector<bool> intTaken_ = std::vector<bool>(16, false), boolTaken_ = std::vector<bool>(16, false);
+  std::map<int, int> repCounts_;  // literal rep count → i# (defi)
+  std::set<int> assignedInPlace_;  // Assigns whose value was computed in the variable's register
 };
 
 }  // namespace

@@ -160,7 +160,7 @@ class Ps1xCodeGen {
         case IrOp::Nrm: refuse(at, "normalize needs rsq (a reciprocal square root), which {} does not have", p); break;
         case IrOp::Exp2: refuse(at, "exp and exp2 need exp, which {} does not have", p); break;
         case IrOp::Log2: refuse(at, "log, log2 and log10 need log, which {} does not have", p); break;
-        case IrOp::Sin: case IrOp::Cos: refuse(at, "sin and cos need sincos, which {} does not have", p); break;
+        case IrOp::SinCos: refuse(at, "sin and cos need sincos, which {} does not have", p); break;
         case IrOp::Frc: refuse(at, "frac, floor, ceil and fmod need frc, which {} does not have", p); break;
         case IrOp::Crs: refuse(at, "cross needs the swizzles .yzx and .zxy, which {} cannot read", p); break;
         case IrOp::Dsx: case IrOp::Dsy: refuse(at, "ddx and ddy are not in {}", p); break;

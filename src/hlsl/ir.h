@@ -1,6 +1,13 @@
-// The compiler's own IR: a straight-line list of vector operations on virtual
-// registers, each defined once (functions inlined, loops unrolled, branches turned
-// into selects by the builder). Components of one virtual register are 0..width-1.
+// The compiler's own IR: a list of vector operations on virtual registers, each
+// defined once (functions inlined, loops unrolled, branches turned into selects by the
+// builder). Components of one virtual register are 0..width-1.
+//
+// Loops marked [loop] and branches marked [branch] may stay flow control: the list
+// then holds properly nested regions, Rep … EndRep and If … [Else …] EndIf. Code in a
+// region runs zero or more times, so a variable it changes lives in a register that
+// Assign writes more than once (before the region, and at the end of each body); such
+// a register has no single definition. A value defined inside a region is read only
+// inside it. Passes treat Assign targets as opaque and never move code across a marker.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -16,17 +23,29 @@ namespace refx::hlsl {
 enum class IrOp : uint8_t {
   Input,     // shader input register (see IrProgram::inputs)
   Uniform,   // one constant register of a uniform
+  UniformRel,  // one constant register of a uniform array, relative: c[src0.x + row] (vertex shaders)
   Constant,  // literal values
   Combine,   // components gathered from other registers (parts[])
   Mov, Add, Mul, Mad, Dp2, Dp3, Dp4, Min, Max, Slt, Sge,
   Cmp,       // src0 >= 0 ? src1 : src2
   Lrp,       // src0 * src1 + (1 - src0) * src2
   Frc, Abs, Nrm, Crs,
-  Rcp, Rsq, Exp2, Log2, Pow, Sin, Cos,  // scalar: per component
+  Rcp, Rsq, Exp2, Log2, Pow,  // scalar: per component
+  SinCos,    // width 2 from the replicated src0 in [-pi, pi]: .x = cos, .y = sin
   Dsx, Dsy,
   Tex, TexProj, TexBias, TexLod, TexGrad,  // src0 coordinate, src1/2 gradients; sampler = index
   Kill,      // texkill src0: discard when any component < 0
+  // Structured flow control (no dst).
+  Rep,       // rep: the body runs `index` times, or i# of int uniform `uniform` times
+  EndRep,
+  If,        // if_comp src0 `compare` src1, or if b# of bool uniform `uniform` (index 1: if !b#)
+  Else,
+  EndIf,
+  Break,     // break (no sources), or break_comp src0 `compare` src1
+  Assign,    // dst (an existing register, written more than once) = src0
 };
+
+inline bool isFlowMarker(IrOp op) { return op >= IrOp::Rep && op <= IrOp::Break; }
 
 struct IrSrc {
   int reg = -1;                            // virtual register
@@ -48,7 +67,9 @@ struct IrInst {
   std::array<IrSrc, 3> src{};
   int srcCount = 0;
   int sampler = -1;    // Tex*: sampler index in IrProgram::samplers
-  int index = 0;       // Input: input index; Uniform: uniform index and register row (row << 16 | uniform)
+  int index = 0;       // Input: input index; Uniform, UniformRel: uniform index and register row (row << 16 | uniform)
+  int uniform = -1;    // Rep, If: the int / bool uniform read from an i# / b# register
+  shader::Comparison compare = shader::Comparison::None;  // If, Break with sources
   std::array<float, 4> literal{};  // Constant
   std::vector<IrPart> parts;       // Combine
   SourceLocation where;
@@ -83,6 +104,9 @@ struct IrUniform {
   // A register the preshader writes (an expression of uniforms computed on the CPU):
   // placed like a uniform, absent from the constant table.
   bool preshaderOutput = false;
+  bool loopCount = false;   // a [loop] trip count: an int register i# (rep i#)
+  bool branchBool = false;  // a [branch] condition: a bool register b# (if b#)
+  int flowRegister = -1;    // i# / b#, assigned by the back end
 };
 
 struct IrSampler {
@@ -105,6 +129,13 @@ struct IrProgram {
   int newReg(int width) {
     regWidth.push_back(width);
     return int(regWidth.size()) - 1;
+  }
+  // Registers Assign writes (variables of flow-control regions).
+  std::vector<bool> assignedRegisters() const {
+    std::vector<bool> out(regWidth.size(), false);
+    for (const IrInst& in : code)
+      if (in.op == IrOp::Assign) out[in.dst] = true;
+    return out;
   }
 };
 

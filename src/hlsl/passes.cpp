@@ -1,4 +1,6 @@
 // IR optimisation passes. Each is one small function over the instruction list.
+// Registers that Assign writes (variables of flow-control regions) have no single
+// definition: no pass reads through them, copies them or moves them.
 #include <bit>
 #include <cmath>
 #include <map>
@@ -10,10 +12,13 @@ namespace refx::hlsl {
 
 namespace {
 
+// The instruction defining each register; -1 for variables (written by Assign).
 std::vector<int> definitionIndex(const IrProgram& ir) {
   std::vector<int> def(ir.regWidth.size(), -1);
   for (size_t i = 0; i < ir.code.size(); ++i)
-    if (ir.code[i].dst >= 0) def[ir.code[i].dst] = int(i);
+    if (ir.code[i].dst >= 0 && ir.code[i].op != IrOp::Assign) def[ir.code[i].dst] = int(i);
+  for (const IrInst& in : ir.code)
+    if (in.op == IrOp::Assign) def[in.dst] = -1;
   return def;
 }
 
@@ -61,13 +66,15 @@ void foldConstants(IrProgram& ir) {
 // A saturating mov of a value nothing else reads moves its _sat onto the producer.
 void propagateCopies(IrProgram& ir) {
   std::vector<int> def = definitionIndex(ir);
+  const std::vector<bool> variable = ir.assignedRegisters();
   std::vector<int> uses(ir.regWidth.size(), 0);
   forEachUse(ir, [&](int& r) { ++uses[r]; });
   auto satCapable = [](IrOp op) {
     switch (op) {
-      case IrOp::Input: case IrOp::Uniform: case IrOp::Constant: case IrOp::Combine: case IrOp::Kill:
+      case IrOp::Input: case IrOp::Uniform: case IrOp::UniformRel: case IrOp::Constant: case IrOp::Combine:
+      case IrOp::Kill:
       case IrOp::Tex: case IrOp::TexProj: case IrOp::TexBias: case IrOp::TexLod: case IrOp::TexGrad:
-      case IrOp::Sin: case IrOp::Cos: case IrOp::Frc:
+      case IrOp::SinCos: case IrOp::Frc:
         return false;
       default: return true;
     }
@@ -85,8 +92,9 @@ void propagateCopies(IrProgram& ir) {
     in.saturate = false;  // now a plain copy, removed below
   }
   std::vector<const IrInst*> copyOf(ir.regWidth.size(), nullptr);
+  // A copy of a variable keeps the value it had there: it is not a copy to look through.
   for (const IrInst& in : ir.code)
-    if (in.op == IrOp::Mov && !in.saturate && in.dst >= 0) copyOf[in.dst] = &in;
+    if (in.op == IrOp::Mov && !in.saturate && in.dst >= 0 && !variable[in.src[0].reg]) copyOf[in.dst] = &in;
   // Resolve chains: each use is rewritten to read the root source.
   auto resolveSrc = [&](IrSrc& s) {
     for (int guard = 0; guard < 64 && s.reg >= 0 && copyOf[s.reg]; ++guard) {
@@ -122,11 +130,24 @@ void mergeDuplicates(IrProgram& ir) {
   auto resolve = [&](int& r) {
     if (r >= 0 && replacement[size_t(r)] >= 0) r = replacement[size_t(r)];
   };
-  std::map<std::vector<int>, int> seen;
+  // A value defined in a flow-control region is known only inside it: one table of
+  // values per open region, searched from the innermost out.
+  std::vector<std::map<std::vector<int>, int>> scopes(1);
+  std::vector<bool> variable(ir.regWidth.size(), false);
+  for (const IrInst& in : ir.code)
+    if (in.op == IrOp::Assign && in.dst >= 0) variable[size_t(in.dst)] = true;
   for (IrInst& in : ir.code) {
     for (int s = 0; s < in.srcCount; ++s) resolve(in.src[s].reg);
     for (IrPart& p : in.parts) resolve(p.reg);
-    if (in.dst < 0 || in.op == IrOp::Kill) continue;
+    if (in.op == IrOp::Rep || in.op == IrOp::If) scopes.emplace_back();
+    if (in.op == IrOp::Else) scopes.back().clear();
+    if ((in.op == IrOp::EndRep || in.op == IrOp::EndIf) && scopes.size() > 1) scopes.pop_back();
+    if (in.dst < 0 || in.op == IrOp::Kill || in.op == IrOp::Assign || isFlowMarker(in.op) || variable[size_t(in.dst)])
+      continue;
+    bool readsVariable = false;
+    for (int s = 0; s < in.srcCount; ++s) readsVariable |= in.src[s].reg >= 0 && variable[size_t(in.src[s].reg)];
+    for (const IrPart& p : in.parts) readsVariable |= p.reg >= 0 && variable[size_t(p.reg)];
+    if (readsVariable) continue;  // its value depends on when it runs
     std::vector<int> key{int(in.op), in.width, int(in.saturate), in.sampler, in.index, in.srcCount};
     for (int s = 0; s < in.srcCount; ++s) {
       const IrSrc& src = in.src[s];
@@ -136,8 +157,11 @@ void mergeDuplicates(IrProgram& ir) {
     for (const IrPart& p : in.parts) key.insert(key.end(), {p.reg, p.component, std::bit_cast<int>(p.literal)});
     if (in.op == IrOp::Constant)
       for (int c = 0; c < in.width; ++c) key.push_back(std::bit_cast<int>(in.literal[size_t(c)]));
-    auto [it, added] = seen.emplace(std::move(key), in.dst);
-    if (!added) replacement[size_t(in.dst)] = it->second;
+    int earlier = -1;
+    for (auto scope = scopes.rbegin(); scope != scopes.rend() && earlier < 0; ++scope)
+      if (auto it = scope->find(key); it != scope->end()) earlier = it->second;
+    if (earlier >= 0) replacement[size_t(in.dst)] = earlier;
+    else scopes.back().emplace(std::move(key), in.dst);
   }
   for (IrOutput& o : ir.outputs)
     for (IrPart& p : o.parts) resolve(p.reg);
@@ -146,6 +170,7 @@ void mergeDuplicates(IrProgram& ir) {
 // add(mul(a, b), c) → mad(a, b, c) when the product has no other reader.
 void fuseMultiplyAdd(IrProgram& ir) {
   std::vector<int> def = definitionIndex(ir);
+  const std::vector<bool> variable = ir.assignedRegisters();
   std::vector<int> uses(ir.regWidth.size(), 0);
   forEachUse(ir, [&](int& r) { ++uses[r]; });
   for (IrInst& in : ir.code) {
@@ -155,6 +180,7 @@ void fuseMultiplyAdd(IrProgram& ir) {
       if (prod.absolute || def[prod.reg] < 0 || uses[prod.reg] != 1) continue;
       const IrInst& mul = ir.code[def[prod.reg]];
       if (mul.op != IrOp::Mul || mul.saturate) continue;
+      if (variable[mul.src[0].reg] || variable[mul.src[1].reg]) continue;  // read where the mul is
       // The add reads the product through a swizzle: compose it into the mul's sources.
       IrSrc a = mul.src[0], b = mul.src[1];
       for (int c = 0; c < 4; ++c) {
@@ -174,9 +200,13 @@ void fuseMultiplyAdd(IrProgram& ir) {
   }
 }
 
-// Drops instructions whose results nothing reads (outputs and texkill are the roots).
+// Drops instructions whose results nothing reads (outputs, texkill and flow-control
+// markers are the roots). A variable that is read keeps every Assign to it.
 void removeDeadCode(IrProgram& ir) {
   std::vector<int> def = definitionIndex(ir);
+  std::vector<std::vector<int>> assigns(ir.regWidth.size());
+  for (size_t i = 0; i < ir.code.size(); ++i)
+    if (ir.code[i].op == IrOp::Assign) assigns[ir.code[i].dst].push_back(int(i));
   std::vector<bool> live(ir.regWidth.size(), false);
   std::vector<bool> keep(ir.code.size(), false);
   std::vector<int> work;
@@ -186,13 +216,17 @@ void removeDeadCode(IrProgram& ir) {
   for (const IrOutput& o : ir.outputs)
     for (const IrPart& p : o.parts) mark(p.reg);
   for (size_t i = 0; i < ir.code.size(); ++i)
-    if (ir.code[i].op == IrOp::Kill) {
+    if (ir.code[i].op == IrOp::Kill || isFlowMarker(ir.code[i].op)) {
       keep[i] = true;
       for (int s = 0; s < ir.code[i].srcCount; ++s) mark(ir.code[i].src[s].reg);
     }
   while (!work.empty()) {
     int r = work.back();
     work.pop_back();
+    for (int a : assigns[r]) {
+      keep[a] = true;
+      mark(ir.code[a].src[0].reg);
+    }
     if (def[r] < 0) continue;
     keep[def[r]] = true;
     const IrInst& in = ir.code[def[r]];
@@ -205,7 +239,7 @@ void removeDeadCode(IrProgram& ir) {
   ir.code = std::move(out);
   for (IrUniform& u : ir.uniforms) u.used = false;
   for (const IrInst& in : ir.code)
-    if (in.op == IrOp::Uniform) ir.uniforms[in.index & 0xFFFF].used = true;
+    if (in.op == IrOp::Uniform || in.op == IrOp::UniformRel) ir.uniforms[in.index & 0xFFFF].used = true;
 }
 
 }  // namespace refx::hlsl

@@ -17,7 +17,7 @@ bool evaluable(IrOp op) {
     case IrOp::Mul: case IrOp::Mad: case IrOp::Dp2: case IrOp::Dp3: case IrOp::Dp4: case IrOp::Min:
     case IrOp::Max: case IrOp::Slt: case IrOp::Sge: case IrOp::Cmp: case IrOp::Lrp: case IrOp::Frc:
     case IrOp::Abs: case IrOp::Nrm: case IrOp::Crs: case IrOp::Rcp: case IrOp::Rsq: case IrOp::Exp2:
-    case IrOp::Log2: case IrOp::Pow: case IrOp::Sin: case IrOp::Cos:
+    case IrOp::Log2: case IrOp::Pow: case IrOp::SinCos:
       return true;
     default: return false;
   }
@@ -49,8 +49,6 @@ float scalar(IrOp op, float a, float b, float c) {
     case IrOp::Exp2: return std::exp2(a);
     case IrOp::Log2: return std::log2(std::fabs(a));
     case IrOp::Pow: return std::pow(std::fabs(a), b);
-    case IrOp::Sin: return std::sin(a);
-    case IrOp::Cos: return std::cos(a);
     default: return 0;
   }
 }
@@ -67,8 +65,12 @@ PreshaderExtraction extractPreshader(IrProgram& ir) {
   // uniformOnly: the value depends on uniforms and literals alone. computed: it also
   // takes an operation to make (a uniform or a gather of uniforms is read as it is).
   std::vector<bool> uniformOnly(regs, false), computed(regs, false);
+  // A variable of a flow-control region (written by Assign) changes as the shader runs.
+  std::vector<bool> variable(regs, false);
+  for (const IrInst& in : ir.code)
+    if (in.op == IrOp::Assign && in.dst >= 0) variable[size_t(in.dst)] = true;
   for (const IrInst& in : ir.code) {
-    if (in.dst < 0 || !evaluable(in.op)) continue;
+    if (in.dst < 0 || variable[size_t(in.dst)] || !evaluable(in.op)) continue;
     bool only = true, anyComputed = false;
     forEachSourceReg(in, [&](int r) {
       only = only && uniformOnly[size_t(r)];
@@ -180,6 +182,11 @@ std::vector<float> Preshader::run(std::span<const float> inputRegisters) const {
         float sum = 0;
         for (int i = 0; i < n; ++i) sum += read(in.src[0], i) * read(in.src[1], i);
         r.fill(sum);
+        break;
+      }
+      case IrOp::SinCos: {  // from the replicated source: .x = cos, .y = sin
+        const float a = read(in.src[0], 0);
+        r = {std::cos(a), std::sin(a), 0, 0};
         break;
       }
       case IrOp::Nrm: {

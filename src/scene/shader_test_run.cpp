@@ -280,10 +280,12 @@ class Runner {
         continue;
       }
       // D3D9 has no integer constant buffer: the value goes to the float register as
-      // a number, and to the int register i# of the same index.
+      // a number, to the int register i# of the same index, and (the x component) to
+      // the bool register b# of the same index.
       const int64_t v = u.ints[i];
       uniforms_[word] = isUint ? float(uint32_t(v)) : float(int32_t(v));
       if (word / 4 < size_t(kMaxShaderConstI)) intUniforms_[word / 4][word % 4] = int(int32_t(uint32_t(v)));
+      if (word % 4 == 0 && word / 4 < boolUniforms_.size()) boolUniforms_[word / 4] = v != 0;
     }
   }
 
@@ -490,6 +492,8 @@ class Runner {
     }
     device_.setVertexShaderConstantI(0, intUniforms_[0].data(), kMaxShaderConstI);
     device_.setPixelShaderConstantI(0, intUniforms_[0].data(), kMaxShaderConstI);
+    device_.setVertexShaderConstantB(0, boolUniforms_.data(), uint32_t(boolUniforms_.size()));
+    device_.setPixelShaderConstantB(0, boolUniforms_.data(), uint32_t(boolUniforms_.size()));
   }
 
   void setTexturesAndSamplers() {
@@ -552,6 +556,7 @@ class Runner {
 
   std::vector<float> uniforms_;
   std::array<std::array<int, 4>, kMaxShaderConstI> intUniforms_{};
+  std::array<int, 16> boolUniforms_{};
   AlphaTestCommand alphaTest_;
   bool flatShading_ = false;
   FogCommand fog_;
