@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "ast.h"
+#include "effect_internal.h"
 #include "refx/core/text.h"
 #include "refx/hlsl/compiler.h"
 #include "refx/pipeline/dx8_declaration.h"
@@ -60,6 +61,8 @@ struct CompiledShader {
   std::optional<shader::VsDeclaration> declaration;
   std::optional<shader::ShaderConstantTable> constants;
   std::optional<hlsl::Preshader> preshader;  // run at each BeginPass / CommitChanges
+  std::string profile, entry;                // compiled ones: what was compiled
+  std::vector<std::string> entryArguments;
   VertexShaderPtr vs;
   PixelShaderPtr ps;
 };
@@ -775,6 +778,9 @@ struct Effect::Impl {
     sh->tokens = r.tokens;
     sh->constants = shader::readConstantTable(r.shader);
     sh->preshader = r.preshader;
+    sh->profile = e.profile;
+    sh->entry = e.entry;
+    sh->entryArguments = opts.entryArguments;
     makeRuntimeShader(*sh, e.where, what);
     compiled.emplace(key, sh);
     return sh;
@@ -1321,5 +1327,204 @@ void Effect::end() {
   m.device = nullptr;
   m.activePass = -1;
 }
+
+
+// ---------------------------------------------------------------- internals for the layer's writers
+namespace detail {
+
+namespace {
+
+// A template over the effect's private Impl (only EffectAccess may name it).
+template <class EffectImpl>
+struct ContentsBuilder {
+  const EffectImpl& m;
+  std::map<const CompiledShader*, ShaderContentsRef> shaders;
+
+  bool readsParameter(const Expr& e) const {
+    if (e.kind == Expr::Kind::ParamRef) return true;
+    if (e.kind == Expr::Kind::Name && m.findParam(e.text)) return true;
+    for (const Expr& a : e.args)
+      if (readsParameter(a)) return true;
+    return false;
+  }
+
+  // "name" or "name[i]" when `e` is a parameter or a constant element of one.
+  std::optional<std::string> parameterName(const Expr& e, int& values) const {
+    if (e.kind == Expr::Kind::ParamRef) return parameterName(e.args[0], values);
+    if (e.kind == Expr::Kind::Name) {
+      const Param* p = m.findParam(e.text);
+      if (!p) return std::nullopt;
+      values = scalarCount(p->decl.desc);
+      return e.text;
+    }
+    if (e.kind == Expr::Kind::Index && e.args[0].kind == Expr::Kind::Name && !readsParameter(e.args[1])) {
+      const Param* p = m.findParam(e.args[0].text);
+      if (!p || p->decl.desc.elements == 0) return std::nullopt;
+      const Value i = m.numeric(e.args[1]);
+      if (i.numbers.size() != 1) return std::nullopt;
+      values = p->decl.desc.rows * p->decl.desc.columns;
+      return fmt::format("{}[{}]", e.args[0].text, toInt(i.numbers[0]));
+    }
+    return std::nullopt;
+  }
+
+  ShaderContentsRef shader(const ShaderRef& sh) {
+    if (!sh) return nullptr;
+    if (auto it = shaders.find(sh.get()); it != shaders.end()) return it->second;
+    auto c = std::make_shared<ShaderContents>();
+    c->vertex = sh->vertex;
+    c->tokens = sh->tokens;
+    c->compiled = !sh->profile.empty();
+    c->preshader = sh->preshader;
+    c->profile = sh->profile;
+    c->entry = sh->entry;
+    c->entryArguments = sh->entryArguments;
+    shaders.emplace(sh.get(), c);
+    return c;
+  }
+
+  StateContents state(const BoundState& s) {
+    StateContents c;
+    c.name = s.name;
+    c.info = s.info;
+    c.index = s.index;
+    c.where = s.where;
+    using K = StateContents::Kind;
+    switch (s.info.target) {
+      case StateTarget::VertexShader:
+      case StateTarget::PixelShader:
+        if (s.shaderFromValue) {
+          if (m.eval(s.value).isNull) {
+            c.kind = K::Null;
+          } else if (auto n = parameterName(s.value, c.referencedValues)) {
+            c.kind = K::Parameter;
+            c.parameter = *n;
+          } else {
+            c.kind = K::Expression;
+            c.expression = &s.value;
+          }
+        } else if (s.shader) {
+          c.kind = K::Shader;
+          c.shader = shader(s.shader);
+        } else {
+          c.kind = K::Null;
+        }
+        return c;
+      case StateTarget::Texture:
+      case StateTarget::Sampler:
+        if (s.samplerBlock) {
+          c.kind = K::SamplerBlock;
+          for (const BoundState& st : s.samplerStates) c.samplerStates.push_back(state(st));
+        } else if (m.eval(s.value).isNull) {
+          c.kind = K::Null;
+        } else if (auto n = parameterName(s.value, c.referencedValues)) {
+          c.kind = K::Parameter;
+          c.parameter = *n;
+        } else {
+          c.kind = K::Expression;
+          c.expression = &s.value;
+        }
+        return c;
+      default: break;
+    }
+    if (readsParameter(s.value)) {
+      if (auto n = parameterName(s.value, c.referencedValues)) {
+        c.kind = K::Parameter;
+        c.parameter = *n;
+      } else {
+        c.kind = K::Expression;
+        c.expression = &s.value;
+      }
+      return c;
+    }
+    c.kind = K::Constant;
+    switch (s.info.target) {
+      case StateTarget::Transform:
+      case StateTarget::Material:
+      case StateTarget::NPatchMode: c.numbers = m.numeric(s.value).numbers; break;
+      case StateTarget::Light:
+        if (LightMember(s.info.code) == LightMember::Type) c.dword = m.stateDword(s);
+        else c.numbers = m.numeric(s.value).numbers;
+        break;
+      case StateTarget::VertexConstF:
+      case StateTarget::PixelConstF: {
+        std::vector<Vec4> regs = m.registers(m.numeric(s.value));
+        if (s.info.code && regs.size() > s.info.code) regs.resize(s.info.code);
+        for (const Vec4& r : regs)
+          for (float x : {r.x, r.y, r.z, r.w}) c.registers.push_back(x);
+        break;
+      }
+      case StateTarget::VertexConstI:
+      case StateTarget::PixelConstI:
+        for (double x : m.numeric(s.value).numbers) c.registers.push_back(toInt(x));
+        while (c.registers.size() % 4) c.registers.push_back(0);
+        break;
+      case StateTarget::VertexConstB:
+      case StateTarget::PixelConstB:
+        for (double x : m.numeric(s.value).numbers) c.registers.push_back(x != 0 ? 1 : 0);
+        break;
+      default: c.dword = m.stateDword(s); break;
+    }
+    return c;
+  }
+};
+
+}  // namespace
+
+EffectContents EffectAccess::contents(const Effect& effect) {
+  const auto& m = *effect.impl_;
+  ContentsBuilder<std::decay_t<decltype(m)>> b{m, {}};
+  EffectContents out;
+  out.fileName = m.fileName;
+  for (const Param& p : m.params) {
+    ParameterContents pc;
+    pc.desc = p.decl.desc;
+    pc.annotations = p.decl.annotations;
+    pc.raw = p.store->raw;
+    pc.text = p.store->text;
+    pc.shader = b.shader(p.shader);
+    pc.hasSamplerState = p.decl.samplerInit.has_value();
+    for (const BoundState& s : p.samplerStates) pc.samplerStates.push_back(b.state(s));
+    out.parameters.push_back(std::move(pc));
+  }
+  for (const Technique& t : m.techniques) {
+    TechniqueContents tc;
+    tc.desc = t.desc;
+    for (const Pass& pass : t.passes) {
+      PassContents pc;
+      pc.desc = pass.desc;
+      for (const BoundState& s : pass.states) pc.states.push_back(b.state(s));
+      tc.passes.push_back(std::move(pc));
+    }
+    out.techniques.push_back(std::move(tc));
+  }
+  return out;
+}
+
+std::optional<std::vector<uint32_t>> EffectAccess::compileWithoutPreshader(const Effect& effect, const ShaderContents& s,
+                                                                          std::string& error) {
+  const auto& m = *effect.impl_;
+  hlsl::CompileOptions opts;
+  opts.profile = s.profile;
+  opts.entry = s.entry;
+  opts.includeDirs = m.options.includeDirs;
+  opts.compatibility = m.preReleaseDialect;
+  opts.preshaders = false;
+  for (const auto& [name, value] : m.options.defines) opts.defines.push_back({name, value});
+  opts.entryArguments = s.entryArguments;
+  const hlsl::CompileResult r = hlsl::compile(m.sourceText, m.fileName, opts);
+  if (!r.ok()) {
+    for (const Diagnostic& d : r.diagnostics)
+      if (d.severity == Severity::Error) {
+        error = fmt::format("{}: error {}: {}", d.where.str(), d.code, d.message);
+        break;
+      }
+    if (error.empty()) error = fmt::format("compile {} {} failed", s.profile, s.entry);
+    return std::nullopt;
+  }
+  return r.tokens;
+}
+
+}  // namespace detail
 
 }  // namespace refx::effect

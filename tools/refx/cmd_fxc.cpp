@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "commands.h"
+#include "refx/effect/effect.h"
+#include "refx/effect/fx2_binary.h"
 #include "refx/hlsl/compiler.h"
 #include "refx/shader/disassembler.h"
 
@@ -18,7 +20,8 @@ namespace {
 const char* kUsage =
     "usage: refx fxc /T <profile> [/E <entry>] [/Fo <file>] [/Fc <file>] [/Fh <file>] [/Vn <name>]\n"
     "                [/D <name>[=<value>]] [/I <dir>] [/Zpr | /Zpc] [/Gec] [/Od] [/nologo] <file>\n"
-    "  /T <profile>  vs_1_1 vs_2_0 vs_2_x vs_3_0 ps_1_1 ps_1_2 ps_1_3 ps_1_4 ps_2_0 ps_2_x ps_3_0\n"
+    "  /T <profile>  vs_1_1 vs_2_0 vs_2_x vs_3_0 ps_1_1 ps_1_2 ps_1_3 ps_1_4 ps_2_0 ps_2_x ps_3_0,\n"
+    "                or fx_2_0: an effect file (.fx) to an fx_2_0 binary (.fxo); /Fc lists it\n"
     "  /E <entry>    entry point (default main)\n"
     "  /Fo <file>    write the shader bytecode\n"
     "  /Fc <file>    write the assembly listing\n"
@@ -95,6 +98,50 @@ bool writeFile(const std::string& path, const std::string& bytes) {
   return bool(f);
 }
 
+// /T fx_2_0: the effect file, loaded as the effect framework loads it, written as an
+// fx_2_0 binary.
+int runEffectFxc(const FxcArgs& a) {
+  effect::EffectOptions eo;
+  eo.includeDirs = a.options.includeDirs;
+  for (const hlsl::MacroDefinition& d : a.options.defines) eo.defines.emplace_back(d.name, d.value);
+  effect::Fx2Binary bin;
+  try {
+    std::unique_ptr<effect::Effect> fx = effect::Effect::fromFile(a.input, eo);
+    for (const effect::EffectDiagnostic& d : fx->diagnostics()) std::fprintf(stderr, "%s\n", d.str().c_str());
+    bin = effect::writeFx2(*fx);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s\ncompilation failed; no code produced\n", e.what());
+    return 1;
+  }
+  const std::string bytes(bin.bytes.begin(), bin.bytes.end());
+  if (!a.objectFile.empty() && !writeFile(a.objectFile, bytes)) {
+    std::fprintf(stderr, "refx fxc: error: cannot write '%s'\n", a.objectFile.c_str());
+    return 1;
+  }
+  if (!a.listingFile.empty() && !writeFile(a.listingFile, bin.listing)) {
+    std::fprintf(stderr, "refx fxc: error: cannot write '%s'\n", a.listingFile.c_str());
+    return 1;
+  }
+  if (!a.headerFile.empty()) {
+    const std::string name = a.variableName.empty() ? "g_effect" : a.variableName;
+    std::string h = "#if 0\n" + bin.listing + "#endif\n\nconst unsigned int " + name + "[] =\n{\n";
+    const size_t words = bin.bytes.size() / 4;
+    for (size_t i = 0; i < words; ++i) {
+      uint32_t w = 0;
+      for (size_t k = 0; k < 4; ++k) w |= uint32_t(bin.bytes[4 * i + k]) << (8 * k);
+      h += fmt::format("{}0x{:08x}{}", i % 6 == 0 ? "    " : "", w, i + 1 == words ? "\n" : (i % 6 == 5 ? ",\n" : ", "));
+    }
+    h += "};\n";
+    if (!writeFile(a.headerFile, h)) {
+      std::fprintf(stderr, "refx fxc: error: cannot write '%s'\n", a.headerFile.c_str());
+      return 1;
+    }
+  }
+  if (a.objectFile.empty() && a.listingFile.empty() && a.headerFile.empty()) std::fputs(bin.listing.c_str(), stdout);
+  std::fprintf(stderr, "compilation succeeded: fx_2_0 effect, %zu bytes\n", bin.bytes.size());
+  return 0;
+}
+
 int runFxc(const std::vector<std::string>& raw) {
   FxcArgs a;
   a.options.profile.clear();
@@ -106,6 +153,7 @@ int runFxc(const std::vector<std::string>& raw) {
     std::ifstream probe(a.input);
     if (!probe) return usageError("cannot open input file '" + a.input + "'");
   }
+  if (a.options.profile == "fx_2_0") return runEffectFxc(a);
   hlsl::CompileResult r = hlsl::compileFile(a.input, a.options);
   std::fputs(r.messages().c_str(), stderr);
   if (!r.ok()) {

@@ -31,6 +31,7 @@ std::string_view parameterTypeName(ParameterType type);  // "float", "texture2D"
 constexpr uint32_t kParameterShared = 1;
 
 struct Annotation;
+namespace detail { struct EffectAccess; }
 using Handle = int;  // index; -1 = none (a null D3DXHANDLE)
 
 // D3DXPARAMETER_DESC plus the annotations.
@@ -197,6 +198,7 @@ class Effect {
   void end();  // restores what begin saved
 
  private:
+  friend struct detail::EffectAccess;  // the layer's binary writer reads the internals
   Effect();
   struct Impl;
   std::unique_ptr<Impl> impl_;
