@@ -323,6 +323,12 @@ class Parser {
       case MnemonicKind::Dcl: parseDcl(ins); break;
       default: parseOperands(ins, mpos); break;
     }
+    // m3x3 r0, v3, c0 (as the DirectX 8 shaders write it) writes the components the
+    // instruction computes: .xyz for m3x3/m4x3, .xy for m3x2, the only masks D3D9 accepts.
+    if (ins.hasDst && !dstMaskGiven_) {
+      if (ins.opcode == Opcode::M3x3 || ins.opcode == Opcode::M4x3) ins.dst.writeMask = 0x7;
+      if (ins.opcode == Opcode::M3x2) ins.dst.writeMask = 0x3;
+    }
     if (ins.opcode == Opcode::Dcl && ins.dst.type != RegType::Sampler &&
         ins.textureType != TextureType::Unknown) {
       operandName_ = "dst";
@@ -646,6 +652,8 @@ class Parser {
     return haveAddr;
   }
 
+  bool dstMaskGiven_ = false;  // the last destination had an explicit write mask
+
   void parseDst(DstParam& d) {
     skipSpace();
     Pos pos = here();
@@ -678,11 +686,13 @@ class Parser {
                findRegisterName(registerLetters(word), shader_.version)->indexed) {
       errorAt(pos, "register '{}' needs a number", word);
     }
+    dstMaskGiven_ = false;
     if (peek() == '.') {
       ++p_;
       Pos mpos = here();
       std::string_view mask = readWord();
       d.writeMask = parseWriteMask(mask, mpos);
+      dstMaskGiven_ = true;
     }
   }
 

@@ -114,6 +114,11 @@ TEST(Assembler, Vs11Arithmetic) {
       {"vs_1_1", "m3x4 r0, v0, c4", {0x00000016, 0x800F0000, 0x90E40000, 0xA0E40004}},
       {"vs_1_1", "m3x3 r0.xyz, v3, c0", {0x00000017, 0x80070000, 0x90E40003, 0xA0E40000}},
       {"vs_1_1", "m3x2 r0.xy, v3, c0", {0x00000018, 0x80030000, 0x90E40003, 0xA0E40000}},
+      // No mask: the components the matrix macro computes (.xyz = 0x7, .xy = 0x3 in
+      // bits 16-19 of the destination token), as D3D9 requires.
+      {"vs_1_1", "m3x3 r5, v8, c0", {0x00000017, 0x80070005, 0x90E40008, 0xA0E40000}},
+      {"vs_1_1", "m4x3 r0, v0, c4", {0x00000015, 0x80070000, 0x90E40000, 0xA0E40004}},
+      {"vs_1_1", "m3x2 r0, v3, c0", {0x00000018, 0x80030000, 0x90E40003, 0xA0E40000}},
       {"vs_1_1", "expp r0, r1.x", {0x0000004E, 0x800F0000, 0x80000001}},
       {"vs_1_1", "logp r0, r1.x", {0x0000004F, 0x800F0000, 0x80000001}},
       // def: dst c0 (A00F0000) + four IEEE floats: 1.0 = 3F800000, 0.0 = 0.

@@ -814,7 +814,9 @@ TEST(ValidatorVs, Saturate) {
 TEST(ValidatorVs, InstructionForms) {
   EXPECT_TRUE(hasError("vs_1_1\nfrc r0.x, v0\nmov oPos, v0", "frc in vs_1_1 writes .y or .xy"));
   EXPECT_TRUE(hasError("vs_2_0\ndcl_position v0\nm4x4 oPos, v0, c0.yxzw", "m4x4 takes no swizzle or modifier on the matrix operand"));
-  EXPECT_TRUE(hasError("vs_2_0\ndcl_position v0\nm3x3 r0, v0, c0\nmov oPos, r0", "m3x3 writes .xyz"));
+  EXPECT_TRUE(hasError("vs_2_0\ndcl_position v0\nm3x3 r0.xyzw, v0, c0\nmov oPos, r0", "m3x3 writes .xyz"));
+  // Without a mask (as the DirectX 8 shaders write it) m3x3 writes the .xyz it computes.
+  EXPECT_TRUE(isValid("vs_1_1\nm3x3 r0, v0, c0\nmov r0.w, v0.w\nmov oPos, r0"));
   EXPECT_TRUE(hasError("vs_1_1\nm4x4 oPos, v0, c94", "m4x4 reads c94..c97 but vs_1_1 has 96 constant registers"));
   EXPECT_TRUE(hasError("vs_2_0\ndcl_position v0\nsincos r0.xy, v0.x, c0, c0\nmov oPos, v0",
                        "sincos in vs_2_0 takes two different constant registers"));
