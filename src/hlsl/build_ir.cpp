@@ -225,28 +225,7 @@ class Builder {
     return true;
   }
 
-  static float foldScalar(IrOp op, float a, float b, float c) {
-    switch (op) {
-      case IrOp::Mov: return a;
-      case IrOp::Add: return a + b;
-      case IrOp::Mul: return a * b;
-      case IrOp::Mad: return a * b + c;
-      case IrOp::Min: return a < b ? a : b;
-      case IrOp::Max: return a >= b ? a : b;
-      case IrOp::Slt: return a < b ? 1.0f : 0.0f;
-      case IrOp::Sge: return a >= b ? 1.0f : 0.0f;
-      case IrOp::Cmp: return a >= 0 ? b : c;
-      case IrOp::Lrp: return a * b + (1 - a) * c;
-      case IrOp::Frc: return a - std::floor(a);
-      case IrOp::Abs: return std::fabs(a);
-      case IrOp::Rcp: return 1.0f / a;
-      case IrOp::Rsq: return 1.0f / std::sqrt(std::fabs(a));
-      case IrOp::Exp2: return std::exp2(a);
-      case IrOp::Log2: return std::log2(std::fabs(a));
-      case IrOp::Pow: return std::pow(std::fabs(a), b);
-      default: return 0;
-    }
-  }
+  static float foldScalar(IrOp op, float a, float b, float c) { return evaluateComponent(op, a, b, c); }
 
   // Emits a component-wise op of `width` components; args are already `width` wide.
   Comps op(IrOp o, int width, std::initializer_list<Comps> args, bool saturate = false) {

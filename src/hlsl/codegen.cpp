@@ -1468,49 +1468,7 @@ class CodeGen {
     }
   }
 
-  shader::Instruction constantTableComment() {
-    ConstantTable table;
-    table.creator = creator_;
-    table.target = v_.name();
-    table.versionToken = v_.token();
-    for (const IrUniform& u : ir_.uniforms) {
-      if (u.flowRegister < 0) continue;
-      ConstantTable::Constant c;
-      c.name = u.name;
-      c.registerSet = u.loopCount ? ConstantTable::RegisterSet::Int4 : ConstantTable::RegisterSet::Bool;
-      c.registerIndex = u.flowRegister;
-      c.registerCount = 1;
-      c.type = u.type;
-      table.constants.push_back(c);
-    }
-    for (const IrUniform& u : ir_.uniforms) {
-      if (!u.used || u.flowRegister >= 0 || u.preshaderOutput) continue;
-      ConstantTable::Constant c;
-      c.name = u.name;
-      c.registerSet = ConstantTable::RegisterSet::Float4;
-      c.registerIndex = u.firstRegister;
-      c.registerCount = u.registerCount;
-      c.type = u.type;
-      c.defaultValue = u.defaults;
-      table.constants.push_back(c);
-    }
-    for (const IrSampler& s : ir_.samplers) {
-      if (s.registerIndex < 0) continue;
-      ConstantTable::Constant c;
-      c.name = s.name;
-      c.registerSet = ConstantTable::RegisterSet::Sampler;
-      c.registerIndex = s.registerIndex;
-      c.registerCount = 1;
-      c.type.cls = TypeClass::Object;
-      c.type.base = BaseType::Sampler;
-      c.type.dim = s.dim;
-      table.constants.push_back(c);
-    }
-    shader::Instruction in;
-    in.opcode = Opcode::Comment;
-    in.comment = table.encode();
-    return in;
-  }
+  shader::Instruction constantTableComment() const { return hlsl::constantTableComment(ir_, creator_, v_); }
 
   struct Def {
     int reg = 0;

@@ -153,7 +153,12 @@ CompileResult compileFile(const std::string& path, const CompileOptions& options
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     CompileResult result;
-    result.diagnostics.push_back({{path, 0, 0}, Severity::Error, "X1507", "failed to open source file: " + path});
+    Diagnostic missing;
+    missing.where = SourceLocation{path, 0, 0};
+    missing.severity = Severity::Error;
+    missing.code = "X1507";
+    missing.message = "failed to open source file: " + path;
+    result.diagnostics.push_back(std::move(missing));
     return result;
   }
   std::stringstream ss;

@@ -133,4 +133,48 @@ std::vector<uint32_t> ConstantTable::encode() const {
   return out;
 }
 
+shader::Instruction constantTableComment(const IrProgram& ir, const std::string& creator, const shader::Version& v) {
+  ConstantTable table;
+  table.creator = creator;
+  table.target = v.name();
+  table.versionToken = v.token();
+  for (const IrUniform& u : ir.uniforms) {
+    if (u.flowRegister < 0) continue;
+    ConstantTable::Constant c;
+    c.name = u.name;
+    c.registerSet = u.loopCount ? ConstantTable::RegisterSet::Int4 : ConstantTable::RegisterSet::Bool;
+    c.registerIndex = u.flowRegister;
+    c.registerCount = 1;
+    c.type = u.type;
+    table.constants.push_back(c);
+  }
+  for (const IrUniform& u : ir.uniforms) {
+    if (!u.used || u.flowRegister >= 0 || u.preshaderOutput) continue;
+    ConstantTable::Constant c;
+    c.name = u.name;
+    c.registerSet = ConstantTable::RegisterSet::Float4;
+    c.registerIndex = u.firstRegister;
+    c.registerCount = u.registerCount;
+    c.type = u.type;
+    c.defaultValue = u.defaults;
+    table.constants.push_back(c);
+  }
+  for (const IrSampler& s : ir.samplers) {
+    if (s.registerIndex < 0) continue;
+    ConstantTable::Constant c;
+    c.name = s.name;
+    c.registerSet = ConstantTable::RegisterSet::Sampler;
+    c.registerIndex = s.registerIndex;
+    c.registerCount = 1;
+    c.type.cls = TypeClass::Object;
+    c.type.base = BaseType::Sampler;
+    c.type.dim = s.dim;
+    table.constants.push_back(c);
+  }
+  shader::Instruction in;
+  in.opcode = shader::Opcode::Comment;
+  in.comment = table.encode();
+  return in;
+}
+
 }  // namespace refx::hlsl

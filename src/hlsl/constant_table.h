@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "hlsl/ast.h"
+#include "hlsl/ir.h"
+#include "refx/shader/bytecode.h"
 
 namespace refx::hlsl {
 
@@ -29,5 +31,10 @@ struct ConstantTable {
   // The comment payload: 'CTAB' then the table, padded to whole DWORDs.
   std::vector<uint32_t> encode() const;
 };
+
+// The constant table of a compiled program, as a comment instruction: the int and bool
+// registers of flow control, the float registers of the uniforms the code reads (not
+// the preshader's outputs), the samplers.
+shader::Instruction constantTableComment(const IrProgram& ir, const std::string& creator, const shader::Version& v);
 
 }  // namespace refx::hlsl

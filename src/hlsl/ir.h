@@ -153,6 +153,11 @@ struct BuildOptions {
 // inlining, unrolling and flattening. Diagnostics go to `sink`.
 IrProgram buildIr(const Program& program, const BuildOptions& options, DiagnosticSink& sink);
 
+// One component of a component-wise operation (Mov … Pow) on literal values, as the
+// shader instructions compute it (pow and log2 of |a|, rsq of |a|): constant folding
+// and the preshader evaluator share it.
+float evaluateComponent(IrOp op, float a, float b, float c);
+
 // Optimisation passes over the IR (each small and named after what it does).
 void foldConstants(IrProgram& ir);
 void propagateCopies(IrProgram& ir);

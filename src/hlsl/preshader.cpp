@@ -30,28 +30,6 @@ void forEachSourceReg(const IrInst& in, F&& f) {
     if (p.reg >= 0) f(p.reg);
 }
 
-float scalar(IrOp op, float a, float b, float c) {
-  switch (op) {
-    case IrOp::Mov: return a;
-    case IrOp::Add: return a + b;
-    case IrOp::Mul: return a * b;
-    case IrOp::Mad: return a * b + c;
-    case IrOp::Min: return a < b ? a : b;
-    case IrOp::Max: return a >= b ? a : b;
-    case IrOp::Slt: return a < b ? 1.0f : 0.0f;
-    case IrOp::Sge: return a >= b ? 1.0f : 0.0f;
-    case IrOp::Cmp: return a >= 0 ? b : c;
-    case IrOp::Lrp: return a * b + (1 - a) * c;
-    case IrOp::Frc: return a - std::floor(a);
-    case IrOp::Abs: return std::fabs(a);
-    case IrOp::Rcp: return 1.0f / a;
-    case IrOp::Rsq: return 1.0f / std::sqrt(std::fabs(a));
-    case IrOp::Exp2: return std::exp2(a);
-    case IrOp::Log2: return std::log2(std::fabs(a));
-    case IrOp::Pow: return std::pow(std::fabs(a), b);
-    default: return 0;
-  }
-}
 
 }  // namespace
 
@@ -203,7 +181,7 @@ std::vector<float> Preshader::run(std::span<const float> inputRegisters) const {
       }
       default:
         for (int c = 0; c < in.width && c < 4; ++c)
-          r[size_t(c)] = scalar(in.op, read(in.src[0], c), in.srcCount > 1 ? read(in.src[1], c) : 0.0f,
+          r[size_t(c)] = evaluateComponent(in.op, read(in.src[0], c), in.srcCount > 1 ? read(in.src[1], c) : 0.0f,
                                 in.srcCount > 2 ? read(in.src[2], c) : 0.0f);
     }
     if (in.saturate)
