@@ -351,6 +351,9 @@ class CodeGen {
       if (pos[c] < 0) return false;
       map[c] = uint8_t(pos[c]);
     }
+    // Components past the width are never read, but maps compose through aliases
+    // component by component: they must name a component too.
+    for (int c = width; c < 4; ++c) map[c] = c > 0 ? map[c - 1] : 0;
     return true;
   }
 
