@@ -252,6 +252,21 @@ class Builder {
   // Emits a component-wise op of `width` components; args are already `width` wide.
   Comps op(IrOp o, int width, std::initializer_list<Comps> args, bool saturate = false) {
     std::vector<Comps> a(args);
+    if (width > 4) {  // a matrix: one op per four components, as a register holds four
+      Comps out;
+      for (int first = 0; first < width; first += 4) {
+        const int n = std::min(4, width - first);
+        std::vector<Comps> part;
+        for (const Comps& x : a) part.emplace_back(x.begin() + first, x.begin() + first + n);
+        const Comps r = opOf(o, n, std::move(part), saturate);
+        out.insert(out.end(), r.begin(), r.end());
+      }
+      return out;
+    }
+    return opOf(o, width, std::move(a), saturate);
+  }
+
+  Comps opOf(IrOp o, int width, std::vector<Comps> a, bool saturate) {
     bool foldable = o != IrOp::Dsx && o != IrOp::Dsy && o != IrOp::Kill && o < IrOp::Tex;
     bool literal = foldable;
     for (const Comps& x : a)
@@ -330,6 +345,14 @@ class Builder {
       Comps o = a;
       for (Comp& c : o) c.k = -c.k;
       return o;
+    }
+    if (a.size() > 4) {  // a matrix: a register of four components at a time
+      Comps out;
+      for (size_t first = 0; first < a.size(); first += 4) {
+        const Comps r = negate(Comps(a.begin() + first, a.begin() + std::min(first + 4, a.size())));
+        out.insert(out.end(), r.begin(), r.end());
+      }
+      return out;
     }
     IrInst inst;
     inst.op = IrOp::Mov;
