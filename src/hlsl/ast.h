@@ -86,6 +86,7 @@ struct Expr {
   bool isFloat = false, isBool = false;
   Type type;          // Constructor / Cast target
   std::vector<ExprPtr> args;
+  int height = 1;     // nodes on the longest path down to a leaf (the parser bounds it)
 };
 
 struct Stmt;

@@ -727,8 +727,43 @@ class Builder {
     return a;
   }
 
+  // ---- bounds on recursion and work ------------------------------------------------------------
+  // Statements, expressions and inlined calls recurse into each other. Past kMaxDepth
+  // levels the program is reported as too deeply nested instead of exhausting the stack
+  // (the parser bounds each construct; calls can stack them). Unrolling and inlining
+  // multiply work (loops in loops, a function calling another twice, …): past kMaxWork
+  // statements and expressions evaluated in all the program is reported as too large
+  // instead of running for minutes. Either way evaluation then stops: statements do
+  // nothing and expressions give an error value, so loops end at once.
+  static constexpr int kMaxDepth = 640;
+  static constexpr long kMaxWork = 100'000;
+  class Deeper {
+   public:
+    explicit Deeper(Builder& b) : b_(b) { ++b_.depth_; ++b_.work_; }
+    ~Deeper() { --b_.depth_; }
+    Deeper(const Deeper&) = delete;
+    Deeper& operator=(const Deeper&) = delete;
+
+   private:
+    Builder& b_;
+  };
+  bool tooDeep(const SourceLocation& at) {
+    if (depth_ <= kMaxDepth && work_ <= kMaxWork && !tooDeepReported_) return false;
+    if (!tooDeepReported_) {
+      tooDeepReported_ = true;
+      if (depth_ > kMaxDepth)
+        sink_->error(at, "X3590", "statements, expressions and inlined calls are nested more than {} levels deep", kMaxDepth);
+      else
+        sink_->error(at, "X3590", "the program is too large: more than {} statements and expressions once loops are "
+                    "unrolled and calls inlined", kMaxWork);
+    }
+    return true;
+  }
+
   // ---- statements ------------------------------------------------------------------------------
   void statement(const Stmt& s) {
+    Deeper deeper(*this);
+    if (tooDeep(s.where)) return;
     where_ = s.where;
     Comp act = active();
     if (act.literal() && act.k == 0) return;  // unreachable here
@@ -1639,7 +1674,7 @@ class Builder {
     functions_.pop_back();
     if (!f.returnType.isVoid()) {
       if (!done.hasReturnValue) {
-        if (!f.syntaxErrors) sink_->error(f.where, "X3080", "'{}': function must return a value", f.name);
+        if (!f.syntaxErrors && !tooDeepReported_) sink_->error(f.where, "X3080", "'{}': function must return a value", f.name);
       } else {
         size_t at = 0;
         bindOutputs(f.returnType, f.returnSemantic, done.returnValue, at, f.where);
@@ -1762,6 +1797,8 @@ class Builder {
 
   // ---- expressions -----------------------------------------------------------------------------
   Value expr(const Expr& e) {
+    Deeper deeper(*this);
+    if (tooDeep(e.where)) return errorValue();
     SourceLocation saved = where_;
     where_ = e.where;
     Value v = exprInner(e);
@@ -2044,7 +2081,7 @@ class Builder {
           sink_->error(e.where, "X3500", "array reference cannot be used as an l-value unless its index is a literal expression");
           return LValue{};
         }
-        int i = int(idx.comps[0].k);
+        int i = literalIndex(idx.comps[0].k);
         std::vector<int> sel;
         Type t;
         if (!indexSelect(base.type, i, e.where, sel, t)) return LValue{};
@@ -2179,6 +2216,10 @@ class Builder {
     return v;
   }
 
+  // A literal index as an int; NaN, infinities and values past int's range (x % 0,
+  // 1e30) become -1, out of bounds for every array.
+  static int literalIndex(float k) { return std::fabs(k) < 1e9f ? int(k) : -1; }
+
   Value indexExpr(const Expr& e) {
     Value base = expr(*e.args[0]);
     Value idx = expr(*e.args[1]);
@@ -2190,7 +2231,7 @@ class Builder {
     if (idx.comps[0].literal()) {
       std::vector<int> sel;
       Type t;
-      if (!indexSelect(base.type, int(idx.comps[0].k), e.where, sel, t)) return errorValue();
+      if (!indexSelect(base.type, literalIndex(idx.comps[0].k), e.where, sel, t)) return errorValue();
       Value v;
       v.type = t;
       for (int i : sel) v.comps.push_back(base.comps[i]);
@@ -2392,7 +2433,7 @@ class Builder {
       Value v; v.type = Type(); v.comps = {lit(0)}; return v;
     }
     if (!frame.hasReturnValue) {
-      if (!best->syntaxErrors) sink_->error(best->where, "X3080", "'{}': function must return a value", best->name);
+      if (!best->syntaxErrors && !tooDeepReported_) sink_->error(best->where, "X3080", "'{}': function must return a value", best->name);
       return errorValue();
     }
     return Value{best->returnType, frame.returnValue, true};
@@ -2548,6 +2589,15 @@ class Builder {
     };
     int width = 0;
     auto W = [&](const Type& t) { return t.components(); };
+    // Geometric intrinsics take vectors (and scalars), never matrices.
+    if (name == "normalize" || name == "length" || name == "len" || name == "distance" || name == "reflect" ||
+        name == "refract" || name == "faceforward") {
+      for (const Value& a : args)
+        if (a.type.cls == TypeClass::Matrix) {
+          sink_->error(at, "X3013", "'{}': vector arguments expected, found '{}'", name, a.type.name());
+          return errorValue();
+        }
+    }
 
     if (name == "abs") return unaryFloat([&](const Comps& a) { return op(IrOp::Abs, int(a.size()), {a}); });
     if (name == "saturate") return unaryFloat([&](const Comps& a) { return saturateOf(a); });
@@ -3040,6 +3090,9 @@ class Builder {
   std::vector<LoopFrame> loops_;
   int realLoops_ = 0;  // rep … endrep regions open
   std::set<const FunctionDecl*> callStack_;
+  int depth_ = 0;
+  long work_ = 0;
+  bool tooDeepReported_ = false;
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -195,18 +196,27 @@ class CodeGen {
 
   static int parseRegisterBinding(const std::string& s, char file) {
     if (s.empty() || std::tolower((unsigned char)s[0]) != file) return -1;
-    return std::atoi(s.c_str() + 1);
+    const long n = std::strtol(s.c_str() + 1, nullptr, 10);
+    return int(std::clamp(n, 0L, 1L << 20));  // far past any register file: reported as over the limit
   }
 
   void placeUniformsAndSamplers() {
     // Explicit register(cN) bindings first, then the rest in declaration order.
+    // Registers past the end of `taken` are free; firstFreeConst_ follows the uniforms
+    // however far they reach, so that a program over the limit is reported below.
     std::vector<bool> taken(8192, false);
+    auto isTaken = [&](int r) { return r < int(taken.size()) && taken[size_t(r)]; };
+    auto take = [&](const IrUniform& u) {
+      for (int k = 0; k < u.registerCount && u.firstRegister + k < int(taken.size()); ++k)
+        taken[size_t(u.firstRegister + k)] = true;
+      firstFreeConst_ = std::max(firstFreeConst_, u.firstRegister + u.registerCount);
+    };
     for (IrUniform& u : ir_.uniforms) {
       if (!u.used || !u.decl) continue;
       int r = parseRegisterBinding(u.decl->registerBinding, 'c');
       if (r < 0) continue;
       u.firstRegister = r;
-      for (int k = 0; k < u.registerCount && r + k < 8192; ++k) taken[r + k] = true;
+      take(u);
     }
     int next = 0;
     for (IrUniform& u : ir_.uniforms) {
@@ -214,16 +224,14 @@ class CodeGen {
       for (;;) {
         bool fits = true;
         for (int k = 0; k < u.registerCount; ++k)
-          if (taken[next + k]) { fits = false; break; }
+          if (isTaken(next + k)) { fits = false; break; }
         if (fits) break;
         ++next;
       }
       u.firstRegister = next;
-      for (int k = 0; k < u.registerCount; ++k) taken[next + k] = true;
+      take(u);
       next += u.registerCount;
     }
-    for (int i = 8191; i >= 0; --i)
-      if (taken[i]) { firstFreeConst_ = i + 1; break; }
     for (const IrInst& in : ir_.code) {
       if (in.op != IrOp::Uniform) continue;
       const IrUniform& u = ir_.uniforms[in.index & 0xFFFF];
@@ -251,8 +259,10 @@ class CodeGen {
     }
     placeFlowUniforms();
     int limit = constLimit();
-    if (firstFreeConst_ > limit)
+    if (firstFreeConst_ > limit) {
       sink_.error(entryWhere_, "X4550", "{} has {} constant registers, the uniforms need {}", v_.name(), limit, firstFreeConst_);
+      constOverflowReported_ = true;
+    }
   }
 
   // Int uniforms counting [loop]s get i# registers, bool uniforms of [branch]es b#.
@@ -408,7 +418,9 @@ class CodeGen {
       if (pos[c] < 0) return false;
       map[c] = uint8_t(pos[c]);
     }
-    for (int c = width; c < 4; ++c) map[c] = map[width - 1];  // unused, but a valid component
+    // Components past the width are never read, but maps compose through aliases
+    // component by component: they must name a component too.
+    for (int c = width; c < 4; ++c) map[c] = c > 0 ? map[c - 1] : 0;
     return true;
   }
 

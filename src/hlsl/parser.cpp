@@ -7,8 +7,14 @@
 //
 // Parse errors report fxc's X3000 "syntax error" with what was expected, then skip
 // to a synchronisation point (';' or the end of the enclosing block).
+//
+// Nesting is bounded so that no input exhausts the stack, here or in the passes that
+// walk the tree recursively: statements, parentheses, unary operators and types nest at
+// most kMaxNesting deep, and an expression tree is at most kMaxExpressionHeight nodes
+// high (a chain `a + b + c …` grows the tree without nesting in the source).
 #include "hlsl/parser.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <map>
 #include <set>
@@ -18,6 +24,13 @@ namespace refx::hlsl {
 namespace {
 
 struct SyntaxError {};
+
+constexpr int kMaxNesting = 256;
+constexpr int kMaxExpressionHeight = 256;
+// One variable holds at most 65,536 components (a float4 array of 16,384), and arrays
+// and structs nest at most 32 deep in its type.
+constexpr int64_t kMaxTypeComponents = 65536;
+constexpr int kMaxTypeDepth = 32;
 
 BaseType scalarBase(const std::string& s) {
   if (s == "bool") return BaseType::Bool;
@@ -122,6 +135,38 @@ class Parser {
     return next().text;
   }
 
+  // One level of recursion of the parser; past kMaxNesting the construct is an error.
+  class Nested {
+   public:
+    Nested(Parser& p, const Token& at) : p_(p) {
+      if (++p_.nesting_ > kMaxNesting) {
+        --p_.nesting_;
+        p_.sink_.error(loc(at), "X3000", "syntax error: nested more than {} levels deep", kMaxNesting);
+        throw SyntaxError{};
+      }
+    }
+    ~Nested() { --p_.nesting_; }
+    Nested(const Nested&) = delete;
+    Nested& operator=(const Nested&) = delete;
+
+   private:
+    Parser& p_;
+  };
+
+  // `e` has all its operands: its height is one more than theirs, at most
+  // kMaxExpressionHeight.
+  ExprPtr grown(ExprPtr e) {
+    int below = 0;
+    for (const ExprPtr& a : e->args)
+      if (a) below = std::max(below, a->height);
+    e->height = below + 1;
+    if (e->height > kMaxExpressionHeight) {
+      sink_.error(e->where, "X3000", "syntax error: expression more than {} operations deep", kMaxExpressionHeight);
+      throw SyntaxError{};
+    }
+    return e;
+  }
+
   void syncTopLevel() {
     int depth = 0;
     while (peek().kind != TokenKind::EndOfFile) {
@@ -160,6 +205,7 @@ class Parser {
 
   Type typeName() {
     const Token& t = peek();
+    Nested nested(*this, t);
     if (t.kind != TokenKind::Identifier) error(t, "expected a type, found {}", describe(t));
     std::string s = t.text;
     Type ty;
@@ -244,8 +290,9 @@ class Parser {
       do {
         StructMember m;
         m.interpolationModifier = interp;
+        const Token& nameTok = peek();
         m.name = identifier("a member name");
-        m.type = arraySuffix(mt);
+        m.type = declaredType(mt, nameTok);
         if (accept(":")) m.semantic = identifier("a semantic");
         def->members.push_back(std::move(m));
       } while (accept(","));
@@ -264,18 +311,62 @@ class Parser {
     while (accept("[")) {
       if (is("]")) { next(); dims.push_back(-1); continue; }  // size from the initialiser
       ExprPtr e = assignment();
-      int n = 0;
-      if (e->kind == ExprKind::Literal) n = int(e->number);
-      else {
-        sink_.error(e->where, "X3058", "array dimensions must be literal scalar expressions");
-        n = 1;
-      }
-      if (n < 1 && n != -1) sink_.error(e->where, "X3059", "array dimension must be between 1 and 65536");
-      dims.push_back(std::max(n, 1));
+      int n = 1;
+      if (e->kind != ExprKind::Literal) sink_.error(e->where, "X3058", "array dimensions must be literal scalar expressions");
+      else if (!(e->number >= 1 && e->number <= 65536)) sink_.error(e->where, "X3059", "array dimension must be between 1 and 65536");
+      else n = int(e->number);
+      dims.push_back(n);
       expect("]", "to close the array dimension");
     }
     for (auto it = dims.rbegin(); it != dims.rend(); ++it) t = Type::arrayOf(t, *it);
+    if (measure(t).components < 0) {
+      sink_.error(loc(peek()), "X3059", "'{}' is too large: more than {} components or {} levels of arrays and structs",
+                  t.name(), kMaxTypeComponents, kMaxTypeDepth);
+      return Type::scalar(BaseType::Float);
+    }
     return t;
+  }
+
+  // Components of a value of type `t` (as Type::flatSize counts them) and how deep
+  // arrays and structs nest in it; components -1 past kMaxTypeComponents or
+  // kMaxTypeDepth. Every declared type is measured, so a struct's members already fit.
+  struct Measure {
+    int64_t components = 0;
+    int depth = 0;
+  };
+  Measure measure(const Type& t) {
+    Measure m;
+    if (t.isArray()) {
+      m = measure(*t.element);
+      if (m.components >= 0) m.components *= t.arraySize;
+      ++m.depth;
+    } else if (t.cls == TypeClass::Struct && t.structDef) {
+      if (auto it = structSizes_.find(t.structDef); it != structSizes_.end()) return it->second;
+      for (const StructMember& member : t.structDef->members) {
+        const Measure e = measure(member.type);
+        m.components = e.components < 0 || m.components < 0 ? -1 : m.components + e.components;
+        m.depth = std::max(m.depth, e.depth + 1);
+        if (m.components > kMaxTypeComponents) m.components = -1;
+      }
+      structSizes_[t.structDef] = m;
+    } else {
+      m.components = t.cls == TypeClass::Object ? 1 : int64_t(t.rows) * t.cols;
+    }
+    if (m.components > kMaxTypeComponents || m.depth > kMaxTypeDepth) m.components = -1;
+    return m;
+  }
+
+  // The type of a declared variable, parameter or member: `base` with the declarator's
+  // array dimensions. Nothing is declared void: that is an error, and the declaration
+  // goes on as a float so that type checking can continue.
+  Type declaredType(const Type& base, const Token& nameTok) {
+    const Type* element = &base;
+    while (element->isArray()) element = element->element.get();
+    if (element->isVoid()) {
+      sink_.error(loc(nameTok), "X3000", "syntax error: '{}' cannot be declared void", nameTok.text);
+      return arraySuffix(Type::scalar(BaseType::Float));
+    }
+    return arraySuffix(base);
   }
 
   // ---- top level -----------------------------------------------------------------------------
@@ -385,8 +476,9 @@ class Parser {
       v->isStatic = mods.isStatic; v->isConst = mods.isConst; v->isUniform = mods.isUniform;
       v->isExtern = mods.isExtern; v->isShared = mods.isShared;
       v->where = loc(peek());
+      const Token& nameTok = peek();
       v->name = identifier("a variable name");
-      v->type = arraySuffix(base);
+      v->type = declaredType(base, nameTok);
       declaratorTail(*v);
       prog.globals.push_back(std::move(v));
     } while (accept(","));
@@ -459,6 +551,7 @@ class Parser {
   }
 
   ExprPtr initList() {
+    Nested nested(*this, peek());
     auto e = std::make_unique<Expr>();
     e->kind = ExprKind::InitList;
     e->where = loc(peek());
@@ -468,7 +561,7 @@ class Parser {
       if (!accept(",")) break;
     }
     expect("}", "to close the initialiser list");
-    return e;
+    return grown(std::move(e));
   }
 
   void function(Program& prog, const Type& ret, const Token& typeTok) {
@@ -494,8 +587,9 @@ class Parser {
       if (packing) p->type.packing = packing;
       else if (p->type.cls == TypeClass::Matrix) p->type.packing = rowMajor_ ? 1 : 2;
       p->where = loc(peek());
+      const Token& nameTok = peek();
       p->name = identifier("a parameter name");
-      p->type = arraySuffix(p->type);
+      p->type = declaredType(p->type, nameTok);
       declaratorTail(*p);
       f->params.push_back(std::move(p));
       if (!accept(",")) break;
@@ -535,6 +629,7 @@ class Parser {
   }
 
   StmtPtr statement() {
+    Nested nested(*this, peek());
     std::vector<std::string> attrs;
     int unroll = 0;
     while (is("[") && peek(1).kind == TokenKind::Identifier) {
@@ -627,8 +722,9 @@ class Parser {
       v->isStatic = mods.isStatic;
       v->isConst = mods.isConst;
       v->where = loc(peek());
+      const Token& nameTok = peek();
       v->name = identifier("a variable name");
-      v->type = arraySuffix(base);
+      v->type = declaredType(base, nameTok);
       declaratorTail(*v);
       s->decls.push_back(std::move(v));
     } while (accept(","));
@@ -651,10 +747,11 @@ class Parser {
     auto c = make(ExprKind::Comma, peek());
     c->args.push_back(std::move(e));
     while (accept(",")) c->args.push_back(assignment());
-    return c;
+    return grown(std::move(c));
   }
 
   ExprPtr assignment() {
+    Nested nested(*this, peek());
     ExprPtr lhs = ternary();
     static const char* ops[] = {"=", "+=", "-=", "*=", "/=", "%=", "&=", "|=", "^=", "<<=", ">>="};
     for (const char* op : ops) {
@@ -663,7 +760,7 @@ class Parser {
         auto e = make(ExprKind::Assign, t, op);
         e->args.push_back(std::move(lhs));
         e->args.push_back(assignment());
-        return e;
+        return grown(std::move(e));
       }
     }
     return lhs;
@@ -678,7 +775,7 @@ class Parser {
     e->args.push_back(assignment());
     expect(":", "in the conditional expression");
     e->args.push_back(assignment());
-    return e;
+    return grown(std::move(e));
   }
 
   static int precedence(const std::string& op) {
@@ -701,7 +798,7 @@ class Parser {
       auto e = make(ExprKind::Binary, t, t.text);
       e->args.push_back(std::move(lhs));
       e->args.push_back(std::move(rhs));
-      lhs = std::move(e);
+      lhs = grown(std::move(e));
     }
   }
 
@@ -719,12 +816,13 @@ class Parser {
 
   ExprPtr unary() {
     const Token& t = peek();
+    Nested nested(*this, t);
     if (t.kind == TokenKind::Punct &&
         (t.text == "-" || t.text == "+" || t.text == "!" || t.text == "~" || t.text == "++" || t.text == "--")) {
       next();
       auto e = make(ExprKind::Unary, t, t.text);
       e->args.push_back(unary());
-      return e;
+      return grown(std::move(e));
     }
     if (castAhead()) {
       next();
@@ -735,7 +833,7 @@ class Parser {
       auto e = make(ExprKind::Cast, t);
       e->type = ty;
       e->args.push_back(unary());
-      return e;
+      return grown(std::move(e));
     }
     return postfix(primary());
   }
@@ -746,19 +844,19 @@ class Parser {
       if (accept(".")) {
         auto m = make(ExprKind::Member, t, identifier("a member or swizzle"));
         m->args.push_back(std::move(e));
-        e = std::move(m);
+        e = grown(std::move(m));
       } else if (is("[")) {
         next();
         auto ix = make(ExprKind::Index, t);
         ix->args.push_back(std::move(e));
         ix->args.push_back(expression());
         expect("]", "to close the index");
-        e = std::move(ix);
+        e = grown(std::move(ix));
       } else if (is("++") || is("--")) {
         next();
         auto p = make(ExprKind::Postfix, t, t.text);
         p->args.push_back(std::move(e));
-        e = std::move(p);
+        e = grown(std::move(p));
       } else {
         return e;
       }
@@ -808,13 +906,13 @@ class Parser {
           auto e = make(ExprKind::Constructor, t);
           e->type = ty;
           callArguments(*e);
-          return e;
+          return grown(std::move(e));
         }
         next();
         if (is("(")) {
           auto e = make(ExprKind::Call, t, t.text);
           callArguments(*e);
-          return e;
+          return grown(std::move(e));
         }
         return make(ExprKind::Name, t, t.text);
       }
@@ -837,6 +935,8 @@ class Parser {
   ParseOptions opt_;
   DiagnosticSink& sink_;
   size_t pos_ = 0;
+  int nesting_ = 0;
+  std::map<const StructDef*, Measure> structSizes_;
   bool rowMajor_ = false;
   Program* prog_ = nullptr;
   std::map<std::string, Type> typedefs_;

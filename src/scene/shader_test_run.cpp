@@ -102,6 +102,42 @@ int componentCount(ElementFormat f) {
   return 0;
 }
 
+std::string profileFor(ShaderStage stage, ShaderModel model) {
+  return fmt::format("{}_{}_0", stage == ShaderStage::Vertex ? "vs" : "ps", model / 10);
+}
+
+// Why a [require] section keeps the sections after it from running at `model`;
+// empty when they run.
+std::string whyInactive(const RequireSection& r, ShaderModel model) {
+  if (model < r.minModel || model >= r.belowModel) return "requires " + describeRange(r);
+  if (!r.missingCaps.empty()) return fmt::format("requires '{}'", r.missingCaps.front());
+  return {};
+}
+
+// Why an active section ends the run on a D3D9 device; empty when it does not.
+std::string whyStop(const UnsupportedSection& u) {
+  return fmt::format("[{}] sections are not run on a D3D9 device", u.name);
+}
+std::string whyStop(const ShaderSection& s) {
+  if (s.stage == ShaderStage::Effect) return "[effect] sections are not run yet";
+  if (s.stage == ShaderStage::Unsupported) return fmt::format("[{}] needs a D3D10+ device", s.stageName);
+  if (s.source == ShaderSource::OtherHex) return "dxbc hex shaders need a D3D10+ device";
+  return {};
+}
+
+ShaderCompilation planCompilation(const ShaderSection& s, int line, ShaderModel model, const RequireSection& require) {
+  ShaderCompilation c;
+  c.section = &s;
+  c.line = line;
+  c.options.profile = profileFor(s.stage, model);
+  c.options.rowMajorDefault = require.rowMajor;
+  // Blank lines in front keep the compiler's line numbers those of the file.
+  c.source = std::string(size_t(std::max(s.bodyLine - 1, 0)), '\n') + s.text;
+  c.mustFail = s.fail && s.fail->holds(model);
+  c.notImplemented = s.notimpl && s.notimpl->holds(model);
+  return c;
+}
+
 class Runner {
  public:
   Runner(const ShaderTestFile& file, ShaderModel model, const ShaderTestOptions& options)
@@ -138,21 +174,17 @@ class Runner {
     noteSkip(reason);
     stopped_ = true;
   }
-  std::string profile(ShaderStage stage) const {
-    return fmt::format("{}_{}_0", stage == ShaderStage::Vertex ? "vs" : "ps", model_ / 10);
-  }
+  std::string profile(ShaderStage stage) const { return profileFor(stage, model_); }
 
   // ---- sections ----
   void section(const RequireSection& r, int) {
     require_ = r;
     skipTests_.clear();
-    inactive_.clear();
-    if (model_ < r.minModel || model_ >= r.belowModel) inactive_ = "requires " + describeRange(r);
-    else if (!r.missingCaps.empty()) inactive_ = fmt::format("requires '{}'", r.missingCaps.front());
+    inactive_ = whyInactive(r, model_);
   }
 
   void section(const UnsupportedSection& u, int) {
-    if (inactive_.empty()) stop(fmt::format("[{}] sections are not run on a D3D9 device", u.name));
+    if (inactive_.empty()) stop(whyStop(u));
   }
 
   void section(const SamplerSection& s, int) { samplers_[s.slot] = s; }
@@ -194,11 +226,10 @@ class Runner {
       clearShader(s.stage);
       return;
     }
-    if (s.stage == ShaderStage::Effect) return stop("[effect] sections are not run yet");
-    if (s.stage == ShaderStage::Unsupported) return stop(fmt::format("[{}] needs a D3D10+ device", s.stageName));
-    if (s.source == ShaderSource::OtherHex) return stop("dxbc hex shaders need a D3D10+ device");
-    const bool mustFail = s.fail && s.fail->holds(model_);
-    const bool notImplemented = s.notimpl && s.notimpl->holds(model_);
+    if (std::string why = whyStop(s); !why.empty()) return stop(why);
+    const ShaderCompilation plan = planCompilation(s, line, model_, require_);
+    const bool mustFail = plan.mustFail;
+    const bool notImplemented = plan.notImplemented;
     std::string error;
     std::vector<uint32_t> tokens;
     if (s.source == ShaderSource::D3dbcHex) {
@@ -211,12 +242,7 @@ class Runner {
         return;
       }
     } else {
-      hlsl::CompileOptions options;
-      options.profile = profile(s.stage);
-      options.rowMajorDefault = require_.rowMajor;
-      // Blank lines in front keep the compiler's line numbers those of the file.
-      const std::string source = std::string(size_t(std::max(s.bodyLine - 1, 0)), '\n') + s.text;
-      hlsl::CompileResult compiled = hlsl::compile(source, file_.path, options);
+      hlsl::CompileResult compiled = hlsl::compile(plan.source, file_.path, plan.options);
       if (compiled.ok()) tokens = std::move(compiled.tokens);
       else error = compiled.diagnostics.empty() ? "compilation failed" : compiled.diagnostics.front().str();
     }
@@ -585,6 +611,29 @@ ShaderTestResult runShaderTest(const ShaderTestFile& file, const ShaderTestOptio
     r.failures.push_back({0, e.what()});
     return r;
   }
+}
+
+std::vector<ShaderCompilation> listShaderCompilations(const ShaderTestFile& file) {
+  std::vector<ShaderCompilation> out;
+  const std::optional<ShaderModel> model = chooseShaderModel(file);
+  if (!model) return out;
+  RequireSection require;
+  bool active = true;
+  // The same walk as Runner::run(): [require] sections switch the following sections
+  // on or off; an active section a D3D9 device cannot run ends the file.
+  for (const auto& entry : file.sections) {
+    if (auto* r = std::get_if<RequireSection>(&entry.section)) {
+      require = *r;
+      active = whyInactive(*r, *model).empty();
+    }
+    if (!active || std::holds_alternative<RequireSection>(entry.section)) continue;
+    if (std::holds_alternative<UnsupportedSection>(entry.section)) break;
+    auto* s = std::get_if<ShaderSection>(&entry.section);
+    if (!s) continue;
+    if (!whyStop(*s).empty()) break;
+    if (s->source == ShaderSource::Hlsl) out.push_back(planCompilation(*s, entry.line, *model, require));
+  }
+  return out;
 }
 
 }  // namespace refx::scene

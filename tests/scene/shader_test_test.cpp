@@ -295,3 +295,51 @@ TEST(ShaderTestRun, UnknownLinesFailNamingTheLine) {
   EXPECT_EQ(r.failures[0].line, 3);
   EXPECT_EQ(r.failures[0].message, "unsupported test line: frobnicate 3");
 }
+
+// The compilations the runner makes: HLSL shader sections switched on by the [require]
+// sections before them, up to the first section a D3D9 device cannot run.
+TEST(ShaderTestRun, ListsTheShadersItCompiles) {
+  const ShaderTestFile f = parseShaderTest(
+      "[vertex shader]\n"                           // 1: vs_2_0
+      "float4 main(float4 p : POSITION) : POSITION { return p; }\n"
+      "[pixel shader fail(sm<3)]\n"                 // 3: must fail at 2.0
+      "float4 main() : COLOR { return 1; }\n"
+      "[require]\n"                                 // 5
+      "shader model >= 4.0\n"
+      "[pixel shader]\n"                            // 7: off (4.0)
+      "float4 main() : SV_Target { return 2; }\n"
+      "[require]\n"                                 // 9
+      "shader model >= 2.0\n"
+      "options: row-major\n"
+      "[pixel shader d3dbc-hex]\n"                  // 12: not HLSL
+      "ffff0200 0000ffff\n"
+      "[pixel shader notimpl]\n"                    // 14: row-major, not implemented
+      "float4 main() : COLOR { return 3; }\n"
+      "[compute shader]\n"                          // 16: ends the file
+      "void main() {}\n"
+      "[pixel shader]\n"                            // 18: never reached
+      "float4 main() : COLOR { return 4; }\n",
+      "t.shader_test");
+  const std::vector<ShaderCompilation> c = listShaderCompilations(f);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0].line, 1);
+  EXPECT_EQ(c[0].options.profile, "vs_2_0");
+  EXPECT_FALSE(c[0].mustFail);
+  EXPECT_EQ(c[0].source, "\nfloat4 main(float4 p : POSITION) : POSITION { return p; }\n");
+  EXPECT_EQ(c[1].line, 3);
+  EXPECT_EQ(c[1].options.profile, "ps_2_0");
+  EXPECT_TRUE(c[1].mustFail);
+  EXPECT_FALSE(c[1].options.rowMajorDefault);
+  EXPECT_EQ(c[2].line, 14);
+  EXPECT_TRUE(c[2].notImplemented);
+  EXPECT_TRUE(c[2].options.rowMajorDefault);
+  EXPECT_EQ(c[2].section, &std::get<ShaderSection>(f.sections[6].section));
+
+  // A file only shader model 3.0 runs compiles for vs_3_0 / ps_3_0.
+  const ShaderTestFile sm3 = parseShaderTest(
+      "[require]\nshader model >= 3.0\n[pixel shader]\nfloat4 main() : COLOR { return 1; }\n", "t");
+  const std::vector<ShaderCompilation> c3 = listShaderCompilations(sm3);
+  ASSERT_EQ(c3.size(), 1u);
+  EXPECT_EQ(c3[0].options.profile, "ps_3_0");
+  EXPECT_TRUE(listShaderCompilations(parseShaderTest("[require]\nshader model >= 4.0\n[pixel shader]\nx\n", "t")).empty());
+}

@@ -16,6 +16,8 @@
 #include <variant>
 #include <vector>
 
+#include "refx/hlsl/compiler.h"
+
 namespace refx::scene {
 
 // Shader model as major * 10 + minor: 20 = 2.0, 41 = 4.1, 66 = 6.6.
@@ -217,5 +219,21 @@ struct ShaderTestOptions {
 // Runs a parsed file on a fresh device (ref caps profile, 640x480 target). Never
 // throws for bad input: device errors become failures at their line.
 ShaderTestResult runShaderTest(const ShaderTestFile& file, const ShaderTestOptions& options = {});
+
+// One HLSL compilation runShaderTest() makes: a [vertex shader] or [pixel shader]
+// section written in HLSL that is active at the file's model and comes before
+// anything that ends the run. hlsl::compile(source, file.path, options) compiles it
+// exactly as the runner does.
+struct ShaderCompilation {
+  const ShaderSection* section = nullptr;  // points into the file
+  int line = 0;                            // line of the section header
+  hlsl::CompileOptions options;            // profile ("ps_2_0", "vs_3_0" …), matrix packing
+  std::string source;                      // the body behind blank lines: line numbers are the file's
+  bool mustFail = false;                   // fail(q) holds at the model
+  bool notImplemented = false;             // notimpl(q) holds at the model
+};
+
+// The compilations of a file in order; empty when no model of 2.0 and 3.0 runs it.
+std::vector<ShaderCompilation> listShaderCompilations(const ShaderTestFile& file);
 
 }  // namespace refx::scene
