@@ -82,7 +82,14 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
     return result;
   }
   PreprocessOptions pp;
-  pp.defines = options.defines;
+  // The target, as dxc documents its predefined macros (__SHADER_TARGET_STAGE is one
+  // of __SHADER_STAGE_PIXEL = 0 / __SHADER_STAGE_VERTEX = 1), then the user's /D.
+  pp.defines = {{"__SHADER_STAGE_PIXEL", "0"},
+                {"__SHADER_STAGE_VERTEX", "1"},
+                {"__SHADER_TARGET_STAGE", version.isVertex() ? "1" : "0"},
+                {"__SHADER_TARGET_MAJOR", std::to_string(version.major)},
+                {"__SHADER_TARGET_MINOR", std::to_string(version.minor)}};
+  pp.defines.insert(pp.defines.end(), options.defines.begin(), options.defines.end());
   pp.includeDirs = options.includeDirs;
   std::vector<Token> tokens = preprocess(source, fileName, pp, sink);
 
