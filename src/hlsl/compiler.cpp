@@ -119,7 +119,10 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
       propagateCopies(ir);
       foldConstants(ir);
       mergeDuplicates(ir);
-      if (options.optimize) fuseMultiplyAdd(ir);
+      if (options.optimize) {
+        fuseMultiplyAdd(ir);
+        vectorizeScalars(ir);
+      }
       removeDeadCode(ir);
       PreshaderExtraction pre;
       if (options.preshaders) {

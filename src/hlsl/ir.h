@@ -162,6 +162,7 @@ float evaluateComponent(IrOp op, float a, float b, float c);
 void foldConstants(IrProgram& ir);
 void propagateCopies(IrProgram& ir);
 void mergeDuplicates(IrProgram& ir);
+void vectorizeScalars(IrProgram& ir);
 void fuseMultiplyAdd(IrProgram& ir);
 void removeDeadCode(IrProgram& ir);
 

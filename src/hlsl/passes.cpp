@@ -1,6 +1,7 @@
 // IR optimisation passes. Each is one small function over the instruction list.
 // Registers that Assign writes (variables of flow-control regions) have no single
 // definition: no pass reads through them, copies them or moves them.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <map>
@@ -188,6 +189,116 @@ void mergeDuplicates(IrProgram& ir) {
   }
   for (IrOutput& o : ir.outputs)
     for (IrPart& p : o.parts) resolve(p.reg);
+}
+
+// Component-wise operations written one component at a time (r.x = a.x * b.x;
+// r.y = a.y * b.y;) become one instruction writing both: the later one joins the
+// earlier when they share the operation, the source registers and their modifiers, read
+// nothing the other writes, and the joined swizzles are ones the version can read.
+void vectorizeScalars(IrProgram& ir) {
+  auto componentWise = [](IrOp op) {
+    switch (op) {
+      case IrOp::Mov: case IrOp::Add: case IrOp::Mul: case IrOp::Mad: case IrOp::Min: case IrOp::Max:
+      case IrOp::Slt: case IrOp::Sge: case IrOp::Cmp: case IrOp::Lrp: case IrOp::Frc: case IrOp::Abs:
+        return true;
+      default: return false;
+    }
+  };
+  // ps_2_0 and ps_1_x read a register with its components in order or one replicated.
+  const bool anySwizzle = ir.version.isVertex() || ir.version.atLeast(2, 1);
+  auto legal = [&](const std::array<uint8_t, 4>& swz, int width) {
+    if (anySwizzle) return true;
+    bool identity = true, replicate = true;
+    for (int c = 0; c < width; ++c) {
+      identity &= swz[size_t(c)] == c;
+      replicate &= swz[size_t(c)] == swz[0];
+    }
+    return identity || replicate;
+  };
+  std::vector<bool> variable(ir.regWidth.size(), false);
+  for (const IrInst& in : ir.code)
+    if (in.op == IrOp::Assign && in.dst >= 0) variable[size_t(in.dst)] = true;
+  // Where each register is now: (register, component offset) after joins.
+  std::vector<std::pair<int, int>> movedTo(ir.regWidth.size(), {-1, 0});
+  auto reads = [](const IrInst& in, int reg) {
+    for (int s = 0; s < in.srcCount; ++s)
+      if (in.src[s].reg == reg) return true;
+    for (const IrPart& p : in.parts)
+      if (p.reg == reg) return true;
+    return false;
+  };
+  constexpr size_t kWindow = 16;  // how far back a partner is looked for
+  auto moved = [&](int reg) { return reg >= 0 && size_t(reg) < movedTo.size() && movedTo[size_t(reg)].first >= 0; };
+  // A wide register can join again: follow the moves to the last one.
+  auto follow = [&](int& reg, int& offset) {
+    while (moved(reg)) {
+      offset += movedTo[size_t(reg)].second;
+      reg = movedTo[size_t(reg)].first;
+    }
+  };
+  auto rewrite = [&](IrInst& in) {
+    for (int s = 0; s < in.srcCount; ++s) {
+      IrSrc& src = in.src[s];
+      int offset = 0;
+      follow(src.reg, offset);
+      // Entries past what the instruction reads stay valid components too.
+      for (uint8_t& c : src.swizzle) c = uint8_t(std::min(c + offset, 3));
+    }
+    for (IrPart& p : in.parts) {
+      int offset = 0;
+      follow(p.reg, offset);
+      p.component = uint8_t(p.component + offset);
+    }
+  };
+  for (size_t j = 0; j < ir.code.size(); ++j) {
+    rewrite(ir.code[j]);  // reads of registers joined earlier read the wide register
+    IrInst& b = ir.code[j];
+    if (b.dst < 0 || !componentWise(b.op) || variable[size_t(b.dst)]) continue;
+    for (size_t back = 1; back <= kWindow && back <= j; ++back) {
+      const size_t i = j - back;
+      IrInst& a = ir.code[i];
+      if (isFlowMarker(a.op) || a.op == IrOp::Assign || a.op == IrOp::Kill) break;
+      if (a.dst < 0 || a.op != b.op || a.saturate != b.saturate || a.srcCount != b.srcCount) continue;
+      if (variable[size_t(a.dst)] || a.width + b.width > 4 || reads(b, a.dst)) continue;
+      bool same = true;
+      for (int s = 0; s < a.srcCount && same; ++s)
+        same = a.src[s].reg == b.src[s].reg && a.src[s].negate == b.src[s].negate &&
+               a.src[s].absolute == b.src[s].absolute;
+      if (!same) continue;
+      std::array<std::array<uint8_t, 4>, 3> joined{};
+      bool ok = true;
+      for (int s = 0; s < a.srcCount && ok; ++s) {
+        for (int c = 0; c < a.width; ++c) joined[size_t(s)][size_t(c)] = a.src[s].swizzle[size_t(c)];
+        for (int c = 0; c < b.width; ++c) joined[size_t(s)][size_t(a.width + c)] = b.src[s].swizzle[size_t(c)];
+        for (int c = a.width + b.width; c < 4; ++c) joined[size_t(s)][size_t(c)] = joined[size_t(s)][size_t(c - 1)];
+        ok = legal(joined[size_t(s)], a.width + b.width);
+      }
+      // a's result moves to j, so nothing between them may read it.
+      for (size_t k = i + 1; k < j && ok; ++k) ok = !reads(ir.code[k], a.dst);
+      if (!ok) continue;
+      const int wide = ir.newReg(a.width + b.width);
+      movedTo.resize(ir.regWidth.size(), {-1, 0});
+      variable.resize(ir.regWidth.size(), false);
+      movedTo[size_t(a.dst)] = {wide, 0};
+      movedTo[size_t(b.dst)] = {wide, a.width};
+      IrInst joinedInst = b;
+      joinedInst.dst = wide;
+      joinedInst.width = a.width + b.width;
+      for (int s = 0; s < a.srcCount; ++s) joinedInst.src[s].swizzle = joined[size_t(s)];
+      a = IrInst{};  // an empty Mov with no destination: dropped below
+      a.dst = -1;
+      a.op = IrOp::Mov;
+      ir.code[j] = joinedInst;
+      break;
+    }
+  }
+  for (IrOutput& o : ir.outputs)
+    for (IrPart& p : o.parts) {
+      int offset = 0;
+      follow(p.reg, offset);
+      p.component = uint8_t(p.component + offset);
+    }
+  std::erase_if(ir.code, [](const IrInst& in) { return in.op == IrOp::Mov && in.dst < 0 && in.srcCount == 0; });
 }
 
 // add(mul(a, b), c) → mad(a, b, c) when the product has no other reader.
