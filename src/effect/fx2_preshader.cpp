@@ -127,7 +127,10 @@ FxlcProgram fxlcFromPreshader(const hlsl::Preshader& pre) {
         break;
       }
       case IrOp::Nrm: {
-        const FxlcOperand inv = t.op(fxlc_op::Rsq, {dot(3)});
+        FxlcOperand sum = t.op(fxlc_op::Mul, {src(in.src[0], 0), src(in.src[0], 0)});
+        for (int c = 1; c < 3; ++c)
+          sum = t.op(fxlc_op::Add, {sum, t.op(fxlc_op::Mul, {src(in.src[0], c), src(in.src[0], c)})});
+        const FxlcOperand inv = t.op(fxlc_op::Rsq, {sum});
         for (int c = 0; c < 3; ++c) r[size_t(c)] = t.op(fxlc_op::Mul, {src(in.src[0], c), inv});
         break;
       }

@@ -12,10 +12,14 @@
 #include <cstring>
 #include <functional>
 #include <map>
+#include <set>
+#include <sstream>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "effect/effect_internal.h"
+#include "effect/fx2_preshader.h"
 #include "effect/fxlc.h"
 #include "refx/effect/effect.h"
 #include "refx/effect/fx2_binary.h"
@@ -413,6 +417,106 @@ TEST(Fx2MojoShader, NegatedLightPositionByHand) {
   EXPECT_EQ(runWithMojoShader(blob, {{"vLightPos", {0.9f, 0.8f, -1.6f, 1}}}, 4),
             std::to_string(-0.9f) + " " + std::to_string(-0.8f) + " " + std::to_string(1.6f) + " " +
                 std::to_string(-1.0f) + " \n");
+}
+
+// Compiled shaders' preshaders (PRES comments): MojoShader's shader parser reads the
+// preshader of every sample shader that has one, and its VM computes the same output
+// registers as refx's preshader (hlsl::Preshader::run) from the same inputs.
+int checkPreshaders(const Effect& effect) {
+  const Effect* fx = &effect;
+  const detail::EffectContents contents = detail::EffectAccess::contents(*fx);
+  std::set<const detail::ShaderContents*> seen;
+  int checked = 0;
+  for (const auto& t : contents.techniques)
+    for (const auto& pass : t.passes)
+      for (const detail::StateContents& s : pass.states) {
+        if (s.kind != detail::StateContents::Kind::Shader || !s.shader->preshader || !seen.insert(s.shader.get()).second)
+          continue;
+        const hlsl::Preshader& pre = *s.shader->preshader;
+        const std::vector<uint32_t> tokens = detail::withPresComment(s.shader->tokens, detail::fxlcFromPreshader(pre));
+        // Inputs: component k of input register r is 0.37 * (4r + k + 1) - 1.5.
+        std::vector<float> inputs;
+        for (const shader::ShaderConstant& c : pre.inputs.constants)
+          inputs.resize(std::max(inputs.size(), size_t(c.registerIndex + c.registerCount) * 4), 0.0f);
+        for (size_t i = 0; i < inputs.size(); ++i) inputs[i] = 0.37f * float(i + 1) - 1.5f;
+        const std::vector<float> ours = pre.run(inputs);
+        std::string want;
+        for (size_t i = 0; i < pre.outputRegisters.size(); ++i) {
+          want += "c" + std::to_string(pre.outputRegisters[i]);
+          for (int k = 0; k < 4; ++k) want += " " + std::to_string(ours[4 * i + size_t(k)]);
+          want += "\n";
+        }
+        const std::string got = inChild([&]() -> std::string {
+          const MOJOSHADER_parseData* pd =
+              MOJOSHADER_parse(MOJOSHADER_PROFILE_BYTECODE, "main", reinterpret_cast<const unsigned char*>(tokens.data()),
+                               unsigned(tokens.size() * 4), nullptr, 0, nullptr, 0, nullptr, nullptr, nullptr);
+          if (pd->error_count) return std::string("parse error: ") + pd->errors[0].error + "\n";
+          if (!pd->preshader) return "no preshader\n";
+          const MOJOSHADER_preshader* p = pd->preshader;
+          for (unsigned i = 0; i < p->symbol_count; ++i) {
+            const MOJOSHADER_symbol& sym = p->symbols[i];
+            for (unsigned k = 0; k < sym.register_count * 4; ++k) {
+              const size_t at = size_t(sym.register_index) * 4 + k;
+              if (at < size_t(p->register_count) * 4 && at < inputs.size()) p->registers[at] = inputs[at];
+            }
+          }
+          std::vector<float> out(4 * 8192, 0.0f);
+          MOJOSHADER_runPreshader(p, out.data());
+          std::string text;
+          for (int reg : pre.outputRegisters) {
+            text += "c" + std::to_string(reg);
+            for (int k = 0; k < 4; ++k) text += " " + std::to_string(out[size_t(reg) * 4 + size_t(k)]);
+            text += "\n";
+          }
+          return text;
+        });
+        // The same registers, values within float rounding (refx's preshader computes in
+        // float, MojoShader's VM in double).
+        std::istringstream g(got), w(want);
+        std::string a, b;
+        size_t values = 0;
+        while (w >> b) {
+          if (!(g >> a)) {
+            ADD_FAILURE() << got;
+            break;
+          }
+          if (b[0] == 'c') {
+            EXPECT_EQ(a, b) << got;
+            continue;
+          }
+          const double x = std::stod(a), y = std::stod(b);
+          EXPECT_NEAR(x, y, 1e-5 * std::max(1.0, std::fabs(y))) << s.name << " " << s.shader->profile << " " << s.shader->entry << "\n" << got;
+          ++values;
+        }
+        EXPECT_EQ(values, pre.outputRegisters.size() * 4);
+        ++checked;
+      }
+  (void)fx;
+  return checked;
+}
+
+// wood.fx: the one sample whose shaders have a preshader.
+TEST(Fx2MojoShader, WoodPreshaderRunsInMojoShader) { EXPECT_GT(checkPreshaders(*load("wood.fx")), 0); }
+
+// Preshaders with the operations the FXLC translation uses (mul, add, rcp for
+// division, min/max for saturate, lt/ge, cmp, frc, rsq for normalize, sin/cos, dot as
+// mul + add, cross). exp/log (pow) are left out: MojoShader computes e^x and ln x
+// where D3DX computes 2^x and log2 x (reference §5.6).
+TEST(Fx2MojoShader, PreshaderOperationsRunInMojoShader) {
+  const char* text =
+      "float4 a = {0.5, -0.25, 2, 1};\n"
+      "float4 b = {1, 3, -2, 0.5};\n"
+      "float3 n = {1, 2, 2};\n"
+      "float k = 0.3;\n"
+      "float4 PS(float4 t : TEXCOORD0) : COLOR {\n"
+      "  float4 x = saturate(a * b + k) + a / b.y + lerp(a, b, k) + frac(b * 1.7);\n"
+      "  float3 m = normalize(n) + cross(a.xyz, b.xyz) + dot(a, b);\n"
+      "  float s = sin(k) + cos(k) + (k < 0.5 ? 1 : 0) + max(a.x, b.x) + min(a.y, b.y);\n"
+      "  return t * x + float4(m, s);\n"
+      "}\n"
+      "technique T { pass P { PixelShader = compile ps_2_0 PS(); } }\n";
+  auto fx = Effect::fromText(text, "ops.fx");
+  EXPECT_GT(checkPreshaders(*fx), 0);
 }
 
 }  // namespace
