@@ -1795,30 +1795,6 @@ EffectContents EffectAccess::contents(const Effect& effect) {
   return out;
 }
 
-std::optional<std::vector<uint32_t>> EffectAccess::compileWithoutPreshader(const Effect& effect, const ShaderContents& s,
-                                                                          std::string& error) {
-  const auto& m = *effect.impl_;
-  hlsl::CompileOptions opts;
-  opts.profile = s.profile;
-  opts.entry = s.entry;
-  opts.includeDirs = m.options.includeDirs;
-  opts.compatibility = m.preReleaseDialect;
-  opts.preshaders = false;
-  for (const auto& [name, value] : m.options.defines) opts.defines.push_back({name, value});
-  opts.entryArguments = s.entryArguments;
-  const hlsl::CompileResult r = hlsl::compile(m.sourceText, m.fileName, opts);
-  if (!r.ok()) {
-    for (const Diagnostic& d : r.diagnostics)
-      if (d.severity == Severity::Error) {
-        error = fmt::format("{}: error {}: {}", d.where.str(), d.code, d.message);
-        break;
-      }
-    if (error.empty()) error = fmt::format("compile {} {} failed", s.profile, s.entry);
-    return std::nullopt;
-  }
-  return r.tokens;
-}
-
 }  // namespace detail
 
 }  // namespace refx::effect

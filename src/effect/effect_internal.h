@@ -91,10 +91,6 @@ struct EffectContents {
 struct EffectAccess {
   // Throws refx::Error (file:line:col) for a state whose value cannot be classified.
   static EffectContents contents(const Effect& effect);
-  // A compiled shader compiled again with every computation left in the shader (no
-  // preshader); nullopt with `error` set when it no longer fits its profile.
-  static std::optional<std::vector<uint32_t>> compileWithoutPreshader(const Effect& effect, const ShaderContents& s,
-                                                                     std::string& error);
 };
 
 }  // namespace refx::effect::detail

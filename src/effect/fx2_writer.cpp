@@ -153,8 +153,7 @@ std::string stateLabel(const StateContents& s) {
 
 class Writer {
  public:
-  Writer(const Effect& effect, const EffectContents& fx, const Fx2WriteOptions& options)
-      : effect_(effect), fx_(fx), options_(options) {}
+  Writer(const EffectContents& fx, const Fx2WriteOptions& options) : fx_(fx), options_(options) {}
 
   Fx2Binary write() {
     for (const TechniqueContents& t : fx_.techniques)
@@ -616,7 +615,6 @@ class Writer {
     rec.insert(rec.end(), body.begin(), body.end());
   }
 
-  const Effect& effect_;
   const EffectContents& fx_;
   const Fx2WriteOptions& options_;
   std::vector<uint32_t> u_{0};  // the unstructured area; offset 0 is the null DWORD
@@ -632,7 +630,7 @@ class Writer {
 
 Fx2Binary writeFx2(const Effect& effect, const Fx2WriteOptions& options) {
   const EffectContents fx = EffectAccess::contents(effect);
-  return Writer(effect, fx, options).write();
+  return Writer(fx, options).write();
 }
 
 std::optional<uint32_t> fx2StateOperation(std::string_view stateName) {
