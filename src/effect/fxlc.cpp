@@ -130,7 +130,7 @@ std::vector<float> FxlcProgram::run(std::span<const float> inputRegisters) const
   };
   auto write = [&](const FxlcOperand& o, uint32_t c, double v) {
     const size_t i = size_t(o.offset) + c;
-    if (i >= (size_t(1) << 20)) return;
+    if (i >= (size_t(1) << 16)) return;
     if (o.table == FxlcTable::Temp) {
       if (temps.size() <= i) temps.resize(i + 1, 0.0);
       temps[i] = v;
@@ -364,7 +364,7 @@ FxlcProgram decodeFxlc(std::span<const uint32_t> t, const std::string& what, siz
         } else {
           bad(bodyAt + k, fmt::format("an FXLC operand starts with {} (0 or 1 expected)", kind));
         }
-        if (o.offset >= (1u << 20) || o.indexOffset >= (1u << 20))
+        if (o.offset >= (1u << 16) || o.indexOffset >= (1u << 16))
           bad(bodyAt + k - 1, fmt::format("FXLC register offset {} is out of range", o.offset));
         return o;
       };
