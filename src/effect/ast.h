@@ -1,6 +1,7 @@
 // The parsed form of an effect file, before names are bound to parameters and
 // states: what the text says, with positions.
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,6 +10,8 @@
 #include "refx/effect/effect.h"
 
 namespace refx::effect::detail {
+
+struct FxlcProgram;
 
 struct Expr {
   enum class Kind {
@@ -24,6 +27,7 @@ struct Expr {
     Index,     // args[0][args[1]]
     Member,    // args[0].text (swizzle or struct member)
     Null,      // NULL
+    Preshader, // an fx_2_0 FXLC expression: `preshader`, result = its first `components` outputs
   };
   Kind kind = Kind::Number;
   SourceLocation where;
@@ -31,11 +35,13 @@ struct Expr {
   bool isInt = false;
   std::string text;
   std::vector<Expr> args;
+  std::shared_ptr<const FxlcProgram> preshader;
+  int components = 0;
 };
 
 // The right-hand side of a shader state or the initializer of a shader variable.
 struct ShaderExpr {
-  enum class Kind { Null, Asm, Compile, Reference };
+  enum class Kind { Null, Asm, Compile, Reference, Bytecode };
   Kind kind = Kind::Null;
   SourceLocation where;
   std::optional<RawBlock> decl;  // DirectX 8 `decl { … }` before `asm`
@@ -43,6 +49,7 @@ struct ShaderExpr {
   std::string profile, entry;    // Compile
   std::vector<Expr> args;        // Compile: the entry point's uniform arguments
   Expr reference;                // Reference: <vs>, (vs), vs, or an array element
+  std::vector<uint32_t> tokens;  // Bytecode: a shader from an fx_2_0 binary
 };
 
 struct StateAssignment {

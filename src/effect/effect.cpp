@@ -3,6 +3,7 @@
 #include "refx/effect/effect.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -10,6 +11,8 @@
 
 #include "ast.h"
 #include "effect_internal.h"
+#include "fx2_reader.h"
+#include "fxlc.h"
 #include "refx/core/text.h"
 #include "refx/hlsl/compiler.h"
 #include "refx/pipeline/dx8_declaration.h"
@@ -61,6 +64,8 @@ struct CompiledShader {
   std::optional<shader::VsDeclaration> declaration;
   std::optional<shader::ShaderConstantTable> constants;
   std::optional<hlsl::Preshader> preshader;  // run at each BeginPass / CommitChanges
+  // A shader loaded from an fx_2_0 binary: its PRES preshader, run the same way.
+  std::shared_ptr<const FxlcProgram> loadedPreshader;
   std::string profile, entry;                // compiled ones: what was compiled
   std::vector<std::string> entryArguments;
   VertexShaderPtr vs;
@@ -230,6 +235,12 @@ struct Effect::Impl {
         failAt(e.where, "unknown parameter '{}'", e.text);
       }
       case Expr::Kind::ParamRef: return eval(e.args[0]);
+      case Expr::Kind::Preshader: {
+        Value v;
+        const std::vector<float> out = e.preshader->run(preshaderInputs(e.preshader->inputs));
+        for (int i = 0; i < e.components; ++i) v.numbers.push_back(size_t(i) < out.size() ? double(out[size_t(i)]) : 0.0);
+        return v;
+      }
       case Expr::Kind::List:
       case Expr::Kind::Call: {
         Value v;
@@ -451,14 +462,14 @@ struct Effect::Impl {
     } else {
       dev.setPixelShader(sh ? sh->ps : nullptr);
     }
-    if (sh && sh->constants) bindParameters(dev, *sh);
+    if (sh && (sh->constants || sh->loadedPreshader)) bindParameters(dev, *sh);
   }
 
   // What D3DX does for a compiled shader: every uniform of its constant table that names
   // a parameter gets the parameter's value in the table's registers, and every sampler
   // its sampler_state (with the texture) on the sampler the table gives.
   void bindParameters(Device& dev, const CompiledShader& sh) const {
-    for (const shader::ShaderConstant& c : sh.constants->constants) {
+    if (sh.constants) for (const shader::ShaderConstant& c : sh.constants->constants) {
       const Param* p = findParam(c.name);
       if (!p) continue;  // an entry point's uniform argument ("$k"), folded by the compiler
       const ParameterDesc& d = p->decl.desc;
@@ -507,7 +518,7 @@ struct Effect::Impl {
         case shader::RegisterSet::Sampler: break;
       }
     }
-    if (sh.preshader) runPreshader(dev, sh);
+    if (sh.preshader || sh.loadedPreshader) runPreshader(dev, sh);
   }
 
   // A parameter's value in the registers a constant table entry gives it (matrices
@@ -523,9 +534,30 @@ struct Effect::Impl {
   // The preshader's inputs are parameters (or, for a uniform no parameter names, its
   // default value); its results go to the shader's float constants.
   void runPreshader(Device& dev, const CompiledShader& sh) const {
+    if (sh.loadedPreshader) {
+      const FxlcProgram& pre = *sh.loadedPreshader;
+      const std::vector<float> out = pre.run(preshaderInputs(pre.inputs));
+      for (int reg : pre.outputRegisters()) {
+        if (size_t(reg) * 4 + 4 > out.size()) continue;
+        if (sh.vertex) dev.setVertexShaderConstantF(uint32_t(reg), &out[size_t(reg) * 4], 1);
+        else dev.setPixelShaderConstantF(uint32_t(reg), &out[size_t(reg) * 4], 1);
+      }
+      return;
+    }
     const hlsl::Preshader& pre = *sh.preshader;
+    const std::vector<float> out = pre.run(preshaderInputs(pre.inputs));
+    for (size_t i = 0; i < pre.outputRegisters.size(); ++i) {
+      const uint32_t reg = uint32_t(pre.outputRegisters[i]);
+      if (sh.vertex) dev.setVertexShaderConstantF(reg, &out[4 * i], 1);
+      else dev.setPixelShaderConstantF(reg, &out[4 * i], 1);
+    }
+  }
+
+  // A preshader's input registers: each constant of its table takes the named
+  // parameter's value laid out as the table says (or the table's default value).
+  std::vector<float> preshaderInputs(const shader::ShaderConstantTable& inputs) const {
     std::vector<float> input;
-    for (const shader::ShaderConstant& c : pre.inputs.constants) {
+    for (const shader::ShaderConstant& c : inputs.constants) {
       const size_t at = size_t(c.registerIndex) * 4, size = size_t(c.registerCount) * 4;
       if (input.size() < at + size) input.resize(at + size, 0.0f);
       const Param* p = findParam(c.name);
@@ -537,12 +569,7 @@ struct Effect::Impl {
         std::copy(c.defaultValue.begin(), c.defaultValue.end(), input.begin() + std::ptrdiff_t(at));
       }
     }
-    const std::vector<float> out = pre.run(input);
-    for (size_t i = 0; i < pre.outputRegisters.size(); ++i) {
-      const uint32_t reg = uint32_t(pre.outputRegisters[i]);
-      if (sh.vertex) dev.setVertexShaderConstantF(reg, &out[4 * i], 1);
-      else dev.setPixelShaderConstantF(reg, &out[4 * i], 1);
-    }
+    return input;
   }
 
   void applySamplerStates(Device& dev, int sampler, const std::vector<BoundState>& states) const {
@@ -692,6 +719,7 @@ struct Effect::Impl {
   // ---------------------------------------------------------------- building
   ShaderRef buildShader(const ShaderExpr& e, bool vertex, const std::string& what) {
     if (e.kind == ShaderExpr::Kind::Compile) return compileShader(e, vertex, what);
+    if (e.kind == ShaderExpr::Kind::Bytecode) return loadShader(e, vertex, what);
     auto sh = std::make_shared<CompiledShader>();
     sh->vertex = vertex;
     if (e.decl) {
@@ -707,6 +735,33 @@ struct Effect::Impl {
     for (const shader::Diagnostic& d : shader::validate(parsed, validationCaps()))
       failAt(SourceLocation{e.assembly.file, d.pos.line, d.pos.column}, "{}: {}", what, d.message);
     makeRuntimeShader(*sh, e.assembly.where, what);
+    return sh;
+  }
+
+  // A shader from an fx_2_0 binary: its constant table binds parameters as a compiled
+  // shader's does, and its PRES preshader (if any) runs at BeginPass / CommitChanges.
+  ShaderRef loadShader(const ShaderExpr& e, bool vertex, const std::string& what) {
+    auto sh = std::make_shared<CompiledShader>();
+    sh->vertex = vertex;
+    sh->tokens = e.tokens;
+    shader::Shader decoded;
+    try {
+      decoded = shader::decode(e.tokens);
+    } catch (const Error& err) {
+      failAt(e.where, "{}: the shader's bytecode cannot be read: {}", what, err.what());
+    }
+    if ((decoded.version.type == shader::ShaderType::Vertex) != vertex)
+      failAt(e.where, "{}: expected a {} shader, the bytecode is {}", what, vertex ? "vertex" : "pixel",
+             decoded.version.name());
+    sh->constants = shader::readConstantTable(decoded);
+    for (const shader::Instruction& ins : decoded.instructions) {
+      if (ins.opcode != shader::Opcode::Comment) continue;
+      if (ins.comment.size() < 2 || ins.comment[0] != 0x53455250u) continue;  // 'PRES'
+      sh->loadedPreshader = std::make_shared<FxlcProgram>(
+          decodeFxlc(std::span<const uint32_t>(ins.comment).subspan(1), what + " (PRES)", 0));
+      break;
+    }
+    makeRuntimeShader(*sh, e.where, what);
     return sh;
   }
 
@@ -1037,12 +1092,24 @@ std::unique_ptr<Effect> Effect::fromText(std::string_view text, const std::strin
   return e;
 }
 
+std::unique_ptr<Effect> Effect::fromFx2(std::span<const uint8_t> bytes, const std::string& name,
+                                        const EffectOptions& options) {
+  std::unique_ptr<Effect> e(new Effect());
+  e->impl_->fileName = name;
+  e->impl_->options = options;
+  e->impl_->build(readFx2(bytes, name), options);
+  return e;
+}
+
 std::unique_ptr<Effect> Effect::fromFile(const std::string& path, const EffectOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("{}: error: cannot open the effect file", path);
   std::ostringstream s;
   s << in.rdbuf();
-  return fromText(s.str(), path, options);
+  const std::string text = s.str();
+  const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  if (isFx2Binary(bytes)) return fromFx2(bytes, path, options);
+  return fromText(text, path, options);
 }
 
 const std::string& Effect::fileName() const { return impl_->fileName; }
@@ -1334,6 +1401,225 @@ namespace detail {
 
 namespace {
 
+// An expression of parameters as FXLC code (fx2-binary.md §5), mirroring Impl::eval:
+// every value is a list of scalar operands (an input component, a literal, a
+// temporary), and each operation is one single-component instruction per result
+// component. Parameters take input registers as the preshader's CTAB lays them out
+// (one register per row of each element, class MATRIX_ROWS for matrices), which is
+// how Impl::preshaderInputs fills them back.
+template <class EffectImpl>
+struct FxlcCompiler {
+  const EffectImpl& m;
+  FxlcProgram prog;
+  uint32_t temps = 0;
+  int nextRegister = 0;
+  std::map<std::string, int> firstRegister;
+
+  struct V {
+    std::vector<FxlcOperand> c;
+    ParameterClass cls = ParameterClass::Vector;
+    int rows = 1, columns = 0;
+  };
+
+  [[noreturn]] static void unsupported(const Expr& e, const std::string& what) {
+    failAt(e.where, "{} cannot be written as an fx_2_0 expression (FXLC)", what);
+  }
+
+  FxlcOperand literal(double x) {
+    for (size_t i = 0; i < prog.literals.size(); ++i)
+      if (std::bit_cast<uint64_t>(prog.literals[i]) == std::bit_cast<uint64_t>(x)) return {FxlcTable::Literal, uint32_t(i)};
+    prog.literals.push_back(x);
+    return {FxlcTable::Literal, uint32_t(prog.literals.size() - 1)};
+  }
+
+  FxlcOperand op(uint32_t opcode, std::vector<FxlcOperand> in) {
+    FxlcInstruction i;
+    i.opcode = opcode;
+    i.inputs = std::move(in);
+    i.output = {FxlcTable::Temp, temps++};
+    prog.code.push_back(i);
+    return i.output;
+  }
+
+  V param(const Expr& e, const Param& p, int element) {
+    const ParameterDesc& d = p.decl.desc;
+    if (!d.isNumeric()) unsupported(e, fmt::format("'{}' ({})", d.name, parameterTypeName(d.type)));
+    const bool matrix = d.cls == ParameterClass::MatrixRows || d.cls == ParameterClass::MatrixColumns;
+    const int perElement = matrix ? d.rows : 1;
+    auto it = firstRegister.find(d.name);
+    if (it == firstRegister.end()) {
+      shader::ShaderConstant c;
+      c.name = d.name;
+      c.registerSet = shader::RegisterSet::Float4;
+      c.registerIndex = nextRegister;
+      c.registerCount = std::max(1, d.elements) * perElement;
+      c.cls = matrix ? shader::ConstantClass::MatrixRows : shader::ConstantClass(d.cls);
+      c.type = int(d.type);
+      c.rows = d.rows;
+      c.columns = d.columns;
+      c.elements = std::max(1, d.elements);
+      prog.inputs.constants.push_back(c);
+      it = firstRegister.emplace(d.name, nextRegister).first;
+      nextRegister += c.registerCount;
+    }
+    V v;
+    const int first = element < 0 ? 0 : element, last = element < 0 ? std::max(1, d.elements) : element + 1;
+    for (int el = first; el < last; ++el)
+      for (int r = 0; r < d.rows; ++r)
+        for (int c = 0; c < d.columns; ++c)
+          v.c.push_back({FxlcTable::Input, uint32_t((it->second + el * perElement + (matrix ? r : 0)) * 4 + c)});
+    v.cls = d.cls == ParameterClass::Scalar ? ParameterClass::Vector : d.cls;
+    v.rows = d.rows;
+    v.columns = d.columns;
+    return v;
+  }
+
+  static bool readsParameter(const EffectImpl& m, const Expr& e) {
+    if (e.kind == Expr::Kind::ParamRef) return true;
+    if (e.kind == Expr::Kind::Name && m.findParam(e.text)) return true;
+    for (const Expr& a : e.args)
+      if (readsParameter(m, a)) return true;
+    return false;
+  }
+
+  FxlcOperand notZero(FxlcOperand x) {  // x != 0 → 1, else 0
+    const FxlcOperand zero = literal(0);
+    return op(fxlc_op::Add, {op(fxlc_op::Lt, {x, zero}), op(fxlc_op::Lt, {zero, x})});
+  }
+
+  V compile(const Expr& e) {
+    switch (e.kind) {
+      case Expr::Kind::Number:
+      case Expr::Kind::Bool: return V{{literal(e.number)}};
+      case Expr::Kind::Name: {
+        if (const Param* p = m.findParam(e.text)) return param(e, *p, -1);
+        failAt(e.where, "unknown parameter '{}'", e.text);
+      }
+      case Expr::Kind::ParamRef: return compile(e.args[0]);
+      case Expr::Kind::List:
+      case Expr::Kind::Call: {
+        V v;
+        for (const Expr& a : e.args) {
+          V x = compile(a);
+          v.c.insert(v.c.end(), x.c.begin(), x.c.end());
+        }
+        if (e.kind == Expr::Kind::Call) {
+          ParameterDesc shape;
+          if (!m.constructorShape(e.text, shape)) unsupported(e, "'" + e.text + "(…)'");
+          const size_t want = size_t(shape.rows * shape.columns);
+          if (v.c.size() == 1 && want > 1) v.c.assign(want, v.c[0]);
+          if (v.c.size() != want) failAt(e.where, "{}(…) takes {} values, {} given", e.text, want, v.c.size());
+          v.cls = shape.cls == ParameterClass::Scalar ? ParameterClass::Vector : shape.cls;
+          v.rows = shape.rows;
+          v.columns = shape.columns;
+        }
+        return v;
+      }
+      case Expr::Kind::Unary: {
+        V v = compile(e.args[0]);
+        for (FxlcOperand& x : v.c) {
+          if (e.text == "-") x = op(fxlc_op::Neg, {x});
+          else if (e.text == "!") x = op(fxlc_op::Add, {literal(1), op(fxlc_op::Neg, {notZero(x)})});
+          else unsupported(e, "'" + e.text + "'");
+        }
+        return v;
+      }
+      case Expr::Kind::Binary: {
+        V a = compile(e.args[0]);
+        V b = compile(e.args[1]);
+        if (a.c.size() != b.c.size() && a.c.size() != 1 && b.c.size() != 1)
+          failAt(e.where, "'{}' between values of {} and {} components", e.text, a.c.size(), b.c.size());
+        V r = a.c.size() >= b.c.size() ? a : b;
+        const std::string& o = e.text;
+        for (size_t i = 0; i < r.c.size(); ++i) {
+          const FxlcOperand x = a.c[a.c.size() == 1 ? 0 : i];
+          const FxlcOperand y = b.c[b.c.size() == 1 ? 0 : i];
+          FxlcOperand z;
+          if (o == "+") z = op(fxlc_op::Add, {x, y});
+          else if (o == "-") z = op(fxlc_op::Add, {x, op(fxlc_op::Neg, {y})});
+          else if (o == "*") z = op(fxlc_op::Mul, {x, y});
+          else if (o == "/") z = op(fxlc_op::Mul, {x, op(fxlc_op::Rcp, {y})});  // fxc never writes div
+          else if (o == "<") z = op(fxlc_op::Lt, {x, y});
+          else if (o == ">") z = op(fxlc_op::Lt, {y, x});
+          else if (o == "<=") z = op(fxlc_op::Ge, {y, x});
+          else if (o == ">=") z = op(fxlc_op::Ge, {x, y});
+          else if (o == "==") z = op(fxlc_op::Mul, {op(fxlc_op::Ge, {x, y}), op(fxlc_op::Ge, {y, x})});
+          else if (o == "!=") z = op(fxlc_op::Add, {op(fxlc_op::Lt, {x, y}), op(fxlc_op::Lt, {y, x})});
+          else if (o == "&&") z = op(fxlc_op::Mul, {notZero(x), notZero(y)});
+          else if (o == "||") z = notZero(op(fxlc_op::Add, {notZero(x), notZero(y)}));
+          else unsupported(e, "the operator '" + o + "'");
+          r.c[i] = z;
+        }
+        return r;
+      }
+      case Expr::Kind::Index: {
+        const Expr& base = e.args[0];
+        if (readsParameter(m, e.args[1])) unsupported(e.args[1], "an index that reads parameters");
+        const Value idx = m.numeric(e.args[1]);
+        if (idx.numbers.size() != 1) failAt(e.args[1].where, "an index must be a scalar");
+        const int i = toInt(idx.numbers[0]);
+        if (base.kind == Expr::Kind::Name) {
+          if (const Param* p = m.findParam(base.text); p && p->decl.desc.elements > 0) {
+            if (i < 0 || i >= p->decl.desc.elements)
+              failAt(e.where, "index {} is outside '{}[{}]'", i, base.text, p->decl.desc.elements);
+            return param(base, *p, i);
+          }
+        }
+        V v = compile(base);
+        const int per = v.columns > 0 && v.rows > 1 ? v.columns : 1;
+        if (i < 0 || size_t((i + 1) * per) > v.c.size()) failAt(e.where, "index {} is out of range", i);
+        V r;
+        r.c.assign(v.c.begin() + i * per, v.c.begin() + (i + 1) * per);
+        r.columns = per;
+        return r;
+      }
+      case Expr::Kind::Member: {
+        V v = compile(e.args[0]);
+        V r;
+        for (char c : e.text) {
+          const std::string_view xyzw = "xyzw", rgba = "rgba";
+          size_t k = xyzw.find(c);
+          if (k == std::string_view::npos) k = rgba.find(c);
+          if (k == std::string_view::npos || k >= v.c.size() || e.text.size() > 4)
+            failAt(e.where, "'.{}' is not a swizzle of a {}-component value", e.text, v.c.size());
+          r.c.push_back(v.c[k]);
+        }
+        r.columns = int(r.c.size());
+        return r;
+      }
+      default: unsupported(e, "this value");
+    }
+  }
+
+  // The state's value as output components oc0.x, oc0.y, … in the order the state
+  // reads them: float shader constants as the registers Impl::registers fills.
+  void finish(const V& v, const StateInfo& info) {
+    std::vector<FxlcOperand> out;
+    if (info.target == StateTarget::VertexConstF || info.target == StateTarget::PixelConstF) {
+      Value shape;
+      shape.cls = v.cls;
+      shape.rows = v.rows;
+      shape.columns = v.columns;
+      for (size_t i = 0; i < v.c.size(); ++i) shape.numbers.push_back(double(i + 1));
+      std::vector<Vec4> regs = EffectImpl::registers(shape);
+      if (info.code && regs.size() > info.code) regs.resize(info.code);
+      for (const Vec4& r : regs)
+        for (float x : {r.x, r.y, r.z, r.w}) out.push_back(x > 0 ? v.c[size_t(x) - 1] : literal(0));
+    } else {
+      out = v.c;
+      if (info.target == StateTarget::VertexConstI || info.target == StateTarget::PixelConstI)
+        while (out.size() % 4) out.push_back(literal(0));
+    }
+    for (size_t k = 0; k < out.size(); ++k) {
+      FxlcInstruction i;
+      i.opcode = fxlc_op::Mov;
+      i.inputs = {out[k]};
+      i.output = {FxlcTable::Output, uint32_t(k)};
+      prog.code.push_back(i);
+    }
+  }
+};
+
 // A template over the effect's private Impl (only EffectAccess may name it).
 template <class EffectImpl>
 struct ContentsBuilder {
@@ -1434,6 +1720,14 @@ struct ContentsBuilder {
       } else {
         c.kind = K::Expression;
         c.expression = &s.value;
+        try {
+          FxlcCompiler<EffectImpl> fx{m, {}};
+          fx.finish(fx.compile(s.value), s.info);
+          c.fxlcComponents = int(fx.prog.code.size() - size_t(fx.temps));
+          c.fxlc = std::make_shared<const FxlcProgram>(std::move(fx.prog));
+        } catch (const Error& e) {
+          c.fxlcError = e.what();
+        }
       }
       return c;
     }
@@ -1499,30 +1793,6 @@ EffectContents EffectAccess::contents(const Effect& effect) {
     out.techniques.push_back(std::move(tc));
   }
   return out;
-}
-
-std::optional<std::vector<uint32_t>> EffectAccess::compileWithoutPreshader(const Effect& effect, const ShaderContents& s,
-                                                                          std::string& error) {
-  const auto& m = *effect.impl_;
-  hlsl::CompileOptions opts;
-  opts.profile = s.profile;
-  opts.entry = s.entry;
-  opts.includeDirs = m.options.includeDirs;
-  opts.compatibility = m.preReleaseDialect;
-  opts.preshaders = false;
-  for (const auto& [name, value] : m.options.defines) opts.defines.push_back({name, value});
-  opts.entryArguments = s.entryArguments;
-  const hlsl::CompileResult r = hlsl::compile(m.sourceText, m.fileName, opts);
-  if (!r.ok()) {
-    for (const Diagnostic& d : r.diagnostics)
-      if (d.severity == Severity::Error) {
-        error = fmt::format("{}: error {}: {}", d.where.str(), d.code, d.message);
-        break;
-      }
-    if (error.empty()) error = fmt::format("compile {} {} failed", s.profile, s.entry);
-    return std::nullopt;
-  }
-  return r.tokens;
 }
 
 }  // namespace detail

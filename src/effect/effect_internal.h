@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ast.h"
+#include "fxlc.h"
 #include "refx/effect/effect.h"
 #include "refx/hlsl/compiler.h"
 #include "state_table.h"
@@ -53,6 +54,12 @@ struct StateContents {
   std::vector<StateContents> samplerStates;
   // The referenced parameter's value count (Parameter), for placeholders.
   int referencedValues = 0;
+  // Expression: the expression as FXLC code whose first `fxlcComponents` outputs are
+  // the state's value (as many as the state takes: registers for shader constants);
+  // when it cannot be written as FXLC, `fxlcError` says why.
+  std::shared_ptr<const FxlcProgram> fxlc;
+  int fxlcComponents = 0;
+  std::string fxlcError;
 };
 
 struct ParameterContents {
@@ -84,10 +91,6 @@ struct EffectContents {
 struct EffectAccess {
   // Throws refx::Error (file:line:col) for a state whose value cannot be classified.
   static EffectContents contents(const Effect& effect);
-  // A compiled shader compiled again with every computation left in the shader (no
-  // preshader); nullopt with `error` set when it no longer fits its profile.
-  static std::optional<std::vector<uint32_t>> compileWithoutPreshader(const Effect& effect, const ShaderContents& s,
-                                                                     std::string& error);
 };
 
 }  // namespace refx::effect::detail

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "effect_internal.h"
+#include "fx2_preshader.h"
 #include "refx/core/text.h"
 #include "refx/effect/fx2_binary.h"
 #include "refx/shader/disassembler.h"
@@ -152,8 +153,7 @@ std::string stateLabel(const StateContents& s) {
 
 class Writer {
  public:
-  Writer(const Effect& effect, const EffectContents& fx, const Fx2WriteOptions& options)
-      : effect_(effect), fx_(fx), options_(options) {}
+  Writer(const EffectContents& fx, const Fx2WriteOptions& options) : fx_(fx), options_(options) {}
 
   Fx2Binary write() {
     for (const TechniqueContents& t : fx_.techniques)
@@ -307,14 +307,14 @@ class Writer {
     if (auto it = tokens_.find(sh.get()); it != tokens_.end()) return it->second;
     std::vector<uint32_t> t = sh->tokens;
     if (sh->preshader) {
-      // A preshader is written as the shader without it: every computation stays in
-      // the shader, which computes the same values per vertex / pixel.
-      std::string error;
-      auto again = EffectAccess::compileWithoutPreshader(effect_, *sh, error);
-      if (!again)
-        fail("{}: error: {}: compile {} {} needs its preshader, and writing preshaders (PRES) is not supported: {}",
-             fx_.fileName, what, sh->profile, sh->entry, error);
-      t = *again;
+      // The preshader goes into the shader as fxc writes it: a PRES comment after the
+      // CTAB (reference §5.1, §5.8), which D3DX runs at BeginPass / CommitChanges.
+      try {
+        t = withPresComment(t, fxlcFromPreshader(*sh->preshader));
+      } catch (const Error& e) {
+        fail("{}: error: {}: compile {} {}: its preshader cannot be written: {}", fx_.fileName, what, sh->profile,
+             sh->entry, e.what());
+      }
     }
     tokens_.emplace(sh.get(), t);
     return t;
@@ -422,9 +422,43 @@ class Writer {
         list("{}state {}: {} (op {}, index {}) = {}\n", indent, owner.state, label, op ? int(*op) : -1,
              owner.technique == kNone ? kSamplerBlockIndex : uint32_t(s.index), text);
     };
-    if (s.kind == K::Expression)
-      failAt(s.where, "state '{}' is an expression of parameters; writing it as an fx_2_0 expression (FXLC) is not supported",
-             label);
+    const bool objectState = s.info.target == StateTarget::VertexShader || s.info.target == StateTarget::PixelShader ||
+                             s.info.target == StateTarget::Texture || s.info.target == StateTarget::Sampler;
+    if (s.kind == K::Expression && (objectState || !s.fxlc))
+      failAt(s.where, "state '{}' is an expression of parameters that cannot be written as an fx_2_0 expression (FXLC){}",
+             label, s.fxlcError.empty() ? "" : ": " + s.fxlcError);
+    if (s.kind == K::Expression) {
+      // An FXLC expression (reference §3.3, §5): zero placeholders typed FLOAT, as many
+      // as the expression's result has components, and the standalone preshader blob
+      // as a usage-0 large object. D3DX runs it at every BeginPass / CommitChanges.
+      const uint32_t n = uint32_t(s.fxlcComponents);
+      const uint32_t value = here();
+      u_.insert(u_.end(), n, 0u);
+      uint32_t rows = n, columns = 1;
+      if (rows > 4 && rows % 4 == 0) {
+        columns = rows / 4;
+        rows = 4;
+      }
+      const ParameterClass cls = shapeOf(s) == ValueShape::Registers ? ParameterClass::MatrixColumns : ParameterClass::MatrixRows;
+      const uint32_t type = here();
+      for (uint32_t w : {uint32_t(ParameterType::Float), uint32_t(cls), 0u, 0u, 0u, rows, columns}) u_.push_back(w);
+      const std::vector<uint32_t> blob = encodeFxlc(*s.fxlc, kFxlcStandaloneVersion, false);
+      large(0, bytesOf(blob));
+      ++shaderCount_;
+      line(fmt::format("expression (large object, usage 0, FXLC, {} bytes, {} components)", blob.size() * 4, n));
+      if (!indent.empty()) {
+        std::string code = s.fxlc->listing();
+        for (const shader::ShaderConstant& c : s.fxlc->inputs.constants)
+          list("{}    // input {} c{}..c{}\n", indent, c.name, c.registerIndex, c.registerIndex + c.registerCount - 1);
+        size_t start = 0;
+        while (start < code.size()) {
+          const size_t end = code.find('\n', start);
+          list("{}    {}\n", indent, code.substr(start, end - start));
+          start = end + 1;
+        }
+      }
+      return {type, value};
+    }
     if (s.kind == K::SamplerBlock)
       failAt(s.where, "state '{}': a sampler_state block here is written as separate sampler states", label);
     const bool shaderState = s.info.target == StateTarget::VertexShader || s.info.target == StateTarget::PixelShader;
@@ -581,7 +615,6 @@ class Writer {
     rec.insert(rec.end(), body.begin(), body.end());
   }
 
-  const Effect& effect_;
   const EffectContents& fx_;
   const Fx2WriteOptions& options_;
   std::vector<uint32_t> u_{0};  // the unstructured area; offset 0 is the null DWORD
@@ -597,7 +630,7 @@ class Writer {
 
 Fx2Binary writeFx2(const Effect& effect, const Fx2WriteOptions& options) {
   const EffectContents fx = EffectAccess::contents(effect);
-  return Writer(effect, fx, options).write();
+  return Writer(fx, options).write();
 }
 
 std::optional<uint32_t> fx2StateOperation(std::string_view stateName) {

@@ -206,15 +206,18 @@ TEST(Fx2Writer, ParameterReferencesAndMatrices) {
 }
 
 TEST(Fx2Writer, RefusesStateExpressionsWithTheirLocation) {
-  const char* text = "float4 v;\ntechnique T { pass P {\n  VertexShaderConstant1[3] = -v;\n} }\n";
+  // A shader chosen by a parameter index (an array selector, usage 2) is not written.
+  const char* text =
+      "int i;\nvertexshader vs[2];\n"
+      "technique T { pass P {\n  VertexShader = (vs[i]);\n} }\n";
   auto fx = Effect::fromText(text, "expr.fx");
   try {
     writeFx2(*fx);
     FAIL() << "an expression of parameters was written";
   } catch (const Error& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find("expr.fx:3:"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("VertexShaderConstant1[3]"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("expr.fx:4:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("VertexShader"), std::string::npos) << msg;
     EXPECT_NE(msg.find("FXLC"), std::string::npos) << msg;
   }
 }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -130,6 +131,13 @@ class Effect {
   // that technique broken (diagnostics() lists them), as D3DX does.
   static std::unique_ptr<Effect> fromText(std::string_view text, const std::string& fileName,
                                           const EffectOptions& options = {});
+  // A compiled effect: the fx_2_0 binary `fxc /T fx_2_0` (or `refx fxc`) writes, tag
+  // 0xFEFF0901. Throws refx::Error ("name: error: fx_2_0 offset 0x…: …") for a damaged
+  // binary; like text effects, a technique whose states or shaders cannot be used is
+  // marked broken.
+  static std::unique_ptr<Effect> fromFx2(std::span<const uint8_t> bytes, const std::string& name,
+                                         const EffectOptions& options = {});
+  // Text, or an fx_2_0 binary when the file starts with its tag.
   static std::unique_ptr<Effect> fromFile(const std::string& path, const EffectOptions& options = {});
   ~Effect();
 

@@ -28,9 +28,11 @@ struct Fx2Binary {
   std::string listing;
 };
 
-// Serialises a loaded effect. Throws refx::Error ("file:line:col: error: …") for what
-// cannot be written: a technique that did not load, a state value that is an
-// expression of parameters (an FXLC expression), a struct parameter.
+// Serialises a loaded effect. State values that are expressions of parameters are
+// written as FXLC expressions, compiled shaders with their preshader (PRES). Throws
+// refx::Error ("file:line:col: error: …") for what cannot be written: a technique that
+// did not load, an expression FXLC cannot express (bitwise operators, a shader chosen
+// by a parameter index), a struct parameter.
 Fx2Binary writeFx2(const Effect& effect, const Fx2WriteOptions& options = {});
 
 // The operation number of an effect state in the fx_2_0 state table (0 … 178):
