@@ -163,7 +163,7 @@ TEST(HlslLimits, ArraySizesAndTypeSizesAreBounded) {
 
 TEST(HlslLimits, LiteralIndicesThatAreNoIntegerAreOutOfBounds) {
   // 1 % 0 is NaN and 1e30 no int: both index out of bounds, read or written.
-  for (const std::string& body : {"int z = 0; return a[1 % z];", "return a[1e30];",
+  for (const char* body : {"int z = 0; return a[1 % z];", "return a[1e30];",
                                   "float4 b[3] = a; int z = 0; b[2 % z] = 1; return b[0];"}) {
     const auto r = compile("float4 a[3]; " + kMain + body + " }");
     EXPECT_EQ(errorCodes(r), std::vector<std::string>{"X3504"}) << body << "\n" << r.messages();
