@@ -249,8 +249,12 @@ class Builder {
       if (!allLiteral(x)) literal = false;
     if (literal) {
       Comps out(width);
+      // Literal operands, absent ones zero.
+      std::array<const Comps*, 3> operand{};
+      for (size_t k = 0; k < a.size() && k < 3; ++k) operand[k] = &a[k];
+      auto at = [&](size_t k, int i) { return operand[k] ? (*operand[k])[size_t(i)].k : 0.0f; };
       for (int i = 0; i < width; ++i) {
-        float v = foldScalar(o, a[0][i].k, a.size() > 1 ? a[1][i].k : 0, a.size() > 2 ? a[2][i].k : 0);
+        float v = foldScalar(o, at(0, i), at(1, i), at(2, i));
         if (saturate) v = std::fmin(std::fmax(v, 0.0f), 1.0f);
         out[i] = lit(v);
       }
@@ -683,6 +687,7 @@ class Builder {
 
   // ---- flow state ------------------------------------------------------------------------------
   struct FunctionFrame {
+    explicit FunctionFrame(const FunctionDecl* d) : decl(d) {}
     const FunctionDecl* decl;
     Comp returned = lit(0);
     Comps returnValue;
@@ -2766,7 +2771,6 @@ class Builder {
     if (name == "faceforward") {
       auto t = sameTypes(3);
       if (!t) return errorValue();
-      int n = W(*t);
       // -n * sign(dot(i, ng))
       Comps d = dot(args[1].comps, args[2].comps);
       Comps neg = op(IrOp::Slt, 1, {d, Comps{lit(0)}});

@@ -66,7 +66,9 @@ TEST_P(ListingRoundTrip, AssemblesToTheCompiledTokens) {
   const std::string listing = shader::disassemble(r.tokens, listingOptions);
   // The listing shows the constant table as fxc's does (every vertex shader here reads
   // matWorldViewProj).
-  if (s.profile[0] == 'v') EXPECT_NE(listing.find("//   matWorldViewProj"), std::string::npos) << listing;
+  if (s.profile[0] == 'v') {
+    EXPECT_NE(listing.find("//   matWorldViewProj"), std::string::npos) << listing;
+  }
 
   std::vector<uint32_t> assembled;
   try {
