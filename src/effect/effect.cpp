@@ -116,6 +116,21 @@ int64_t toInteger(double x) {
   return int64_t(x);
 }
 uint32_t toDword(double x) { return uint32_t(toInteger(x)); }
+
+// The components a swizzle (`.xyzw` or `.rgba`, up to four) selects from a value of
+// `count` components.
+std::vector<size_t> swizzleComponents(const Expr& e, size_t count) {
+  std::vector<size_t> out;
+  for (char c : e.text) {
+    const std::string_view xyzw = "xyzw", rgba = "rgba";
+    size_t k = xyzw.find(c);
+    if (k == std::string_view::npos) k = rgba.find(c);
+    if (k == std::string_view::npos || k >= count || e.text.size() > 4)
+      failAt(e.where, "'.{}' is not a swizzle of a {}-component value", e.text, count);
+    out.push_back(k);
+  }
+  return out;
+}
 int toInt(double x) { return int(std::clamp<int64_t>(toInteger(x), INT32_MIN, INT32_MAX)); }
 
 int scalarCount(const ParameterDesc& d) { return d.isNumeric() ? d.valueCount() : 0; }
@@ -331,14 +346,7 @@ struct Effect::Impl {
       case Expr::Kind::Member: {
         Value v = numeric(e.args[0]);
         Value r;
-        for (char c : e.text) {
-          const std::string_view xyzw = "xyzw", rgba = "rgba";
-          size_t k = xyzw.find(c);
-          if (k == std::string_view::npos) k = rgba.find(c);
-          if (k == std::string_view::npos || k >= v.numbers.size() || e.text.size() > 4)
-            failAt(e.where, "'.{}' is not a swizzle of a {}-component value", e.text, v.numbers.size());
-          r.numbers.push_back(v.numbers[k]);
-        }
+        for (size_t k : swizzleComponents(e, v.numbers.size())) r.numbers.push_back(v.numbers[k]);
         r.columns = int(r.numbers.size());
         return r;
       }
@@ -1576,14 +1584,7 @@ struct FxlcCompiler {
       case Expr::Kind::Member: {
         V v = compile(e.args[0]);
         V r;
-        for (char c : e.text) {
-          const std::string_view xyzw = "xyzw", rgba = "rgba";
-          size_t k = xyzw.find(c);
-          if (k == std::string_view::npos) k = rgba.find(c);
-          if (k == std::string_view::npos || k >= v.c.size() || e.text.size() > 4)
-            failAt(e.where, "'.{}' is not a swizzle of a {}-component value", e.text, v.c.size());
-          r.c.push_back(v.c[k]);
-        }
+        for (size_t k : swizzleComponents(e, v.c.size())) r.c.push_back(v.c[k]);
         r.columns = int(r.c.size());
         return r;
       }
