@@ -1417,6 +1417,7 @@ namespace {
 // how Impl::preshaderInputs fills them back.
 template <class EffectImpl>
 struct FxlcCompiler {
+  explicit FxlcCompiler(const EffectImpl& impl) : m(impl) {}
   const EffectImpl& m;
   FxlcProgram prog;
   uint32_t temps = 0;
@@ -1722,7 +1723,7 @@ struct ContentsBuilder {
         c.kind = K::Expression;
         c.expression = &s.value;
         try {
-          FxlcCompiler<EffectImpl> fx{m, {}};
+          FxlcCompiler<EffectImpl> fx{m};
           fx.finish(fx.compile(s.value), s.info);
           c.fxlcComponents = int(fx.prog.code.size() - size_t(fx.temps));
           c.fxlc = std::make_shared<const FxlcProgram>(std::move(fx.prog));

@@ -110,8 +110,12 @@ TEST_P(SampleRoundTrip, TextAndBinaryAreTheSameEffect) {
     EXPECT_EQ(b.columns, a.columns) << a.name;
     EXPECT_EQ(b.elements, a.elements) << a.name;
     EXPECT_EQ(b.flags, a.flags) << a.name;
-    if (a.isNumeric()) EXPECT_EQ(bin->getFloatArray(p), text->getFloatArray(p)) << a.name;
-    if (a.type == ParameterType::String) EXPECT_EQ(bin->getString(p), text->getString(p)) << a.name;
+    if (a.isNumeric()) {
+      EXPECT_EQ(bin->getFloatArray(p), text->getFloatArray(p)) << a.name;
+    }
+    if (a.type == ParameterType::String) {
+      EXPECT_EQ(bin->getString(p), text->getString(p)) << a.name;
+    }
     EXPECT_EQ(annotationText(bin->parameterAnnotations(p)), annotationText(text->parameterAnnotations(p))) << a.name;
   }
   ASSERT_EQ(bin->techniqueCount(), text->techniqueCount());
@@ -213,7 +217,9 @@ TEST(Fx2Loader, DamagedBinariesAreErrorsWithTheOffset) {
     } catch (const Error& e) {
       const std::string msg = e.what();
       EXPECT_NE(msg.find("cut.fxo: error:"), std::string::npos) << msg;
-      if (n >= 8) EXPECT_NE(msg.find("offset 0x"), std::string::npos) << msg;
+      if (n >= 8) {
+        EXPECT_NE(msg.find("offset 0x"), std::string::npos) << msg;
+      }
     }
   }
   // The parameter's type offset (file byte 0x9C) pointing outside the unstructured area.

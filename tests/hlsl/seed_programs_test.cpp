@@ -40,7 +40,9 @@ TEST(HlslSeeds, CompileForTheArticlesProfiles) {
       hlsl::CompileResult r = compileSeed(f, profile, entry);
       EXPECT_TRUE(r.ok()) << f << " " << profile << "\n" << r.messages();
       EXPECT_FALSE(hasError(r)) << f << " " << profile;
-      if (r.ok()) EXPECT_TRUE(shader::validate(r.shader).empty()) << f << " " << profile;
+      if (r.ok()) {
+        EXPECT_TRUE(shader::validate(r.shader).empty()) << f << " " << profile;
+      }
     }
   }
 }
