@@ -5,9 +5,7 @@
 #include <cstdint>
 #include <span>
 
-#include "refx/core/diagnostics.h"
-#include "refx/effect/effect.h"
-#include "refx/pipeline/device.h"
+#include "exercise_effect.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace refx;
@@ -18,27 +16,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const Error&) {
     return 0;
   }
-  for (effect::Handle p = 0; p < fx->parameterCount(); ++p) (void)fx->parameterDesc(p);
-  DeviceOptions opt;
-  opt.threads = 1;
-  Device device(ref, opt);
-  for (effect::Handle t = 0; t < fx->techniqueCount(); ++t) {
-    (void)fx->validateTechnique(t, ref);
-    if (!fx->techniqueDesc(t).brokenReason.empty()) continue;
-    fx->setTechnique(t);
-    try {
-      const int passes = fx->begin(device, 0);
-      for (int i = 0; i < passes; ++i) {
-        try {
-          fx->beginPass(i);
-        } catch (const Error&) {
-        }
-        fx->endPass();
-      }
-      fx->end();
-    } catch (const Error&) {
-      return 0;
-    }
-  }
+  exerciseEffect(*fx, {&ref});
   return 0;
 }
