@@ -117,6 +117,18 @@ int64_t toInteger(double x) {
 }
 uint32_t toDword(double x) { return uint32_t(toInteger(x)); }
 
+// `p[i]` on an array parameter of `elements` elements.
+void checkElementIndex(const Expr& e, const Expr& base, int i, int elements) {
+  if (i < 0 || i >= elements) failAt(e.where, "index {} is outside '{}[{}]'", i, base.text, elements);
+}
+
+// `v[i]` on a value: row i of a matrix, component i of anything else, as (first, count).
+std::pair<size_t, size_t> indexedRow(const Expr& e, int i, int rows, int columns, size_t size) {
+  const size_t per = columns > 0 && rows > 1 ? size_t(columns) : 1;
+  if (i < 0 || (size_t(i) + 1) * per > size) failAt(e.where, "index {} is out of range", i);
+  return {size_t(i) * per, per};
+}
+
 // The components a swizzle (`.xyzw` or `.rgba`, up to four) selects from a value of
 // `count` components.
 std::vector<size_t> swizzleComponents(const Expr& e, size_t count) {
@@ -330,17 +342,15 @@ struct Effect::Impl {
         const int i = toInt(idx.numbers[0]);
         if (base.kind == Expr::Kind::Name) {
           if (const Param* p = findParam(base.text); p && p->decl.desc.elements > 0) {
-            if (i < 0 || i >= p->decl.desc.elements)
-              failAt(e.where, "index {} is outside '{}[{}]'", i, base.text, p->decl.desc.elements);
+            checkElementIndex(e, base, i, p->decl.desc.elements);
             return paramValue(*p, i);
           }
         }
         Value v = numeric(base);
-        const int per = v.columns > 0 && v.rows > 1 ? v.columns : 1;
-        if (i < 0 || size_t((i + 1) * per) > v.numbers.size()) failAt(e.where, "index {} is out of range", i);
+        const auto [first, per] = indexedRow(e, i, v.rows, v.columns, v.numbers.size());
         Value r;
-        r.numbers.assign(v.numbers.begin() + i * per, v.numbers.begin() + (i + 1) * per);
-        r.columns = per;
+        r.numbers.assign(v.numbers.begin() + std::ptrdiff_t(first), v.numbers.begin() + std::ptrdiff_t(first + per));
+        r.columns = int(per);
         return r;
       }
       case Expr::Kind::Member: {
@@ -1569,17 +1579,15 @@ struct FxlcCompiler {
         const int i = toInt(idx.numbers[0]);
         if (base.kind == Expr::Kind::Name) {
           if (const Param* p = m.findParam(base.text); p && p->decl.desc.elements > 0) {
-            if (i < 0 || i >= p->decl.desc.elements)
-              failAt(e.where, "index {} is outside '{}[{}]'", i, base.text, p->decl.desc.elements);
+            checkElementIndex(e, base, i, p->decl.desc.elements);
             return param(base, *p, i);
           }
         }
         V v = compile(base);
-        const int per = v.columns > 0 && v.rows > 1 ? v.columns : 1;
-        if (i < 0 || size_t((i + 1) * per) > v.c.size()) failAt(e.where, "index {} is out of range", i);
+        const auto [first, per] = indexedRow(e, i, v.rows, v.columns, v.c.size());
         V r;
-        r.c.assign(v.c.begin() + i * per, v.c.begin() + (i + 1) * per);
-        r.columns = per;
+        r.c.assign(v.c.begin() + std::ptrdiff_t(first), v.c.begin() + std::ptrdiff_t(first + per));
+        r.columns = int(per);
         return r;
       }
       case Expr::Kind::Member: {
