@@ -66,8 +66,9 @@ void Device::resolveClear() const {
 
 void Device::setRenderTarget(TexturePtr target) {
   if (target && (target->type() != TextureType::Texture2D ||
-                 (target->format() != Format::A8R8G8B8 && target->format() != Format::X8R8G8B8)))
-    fail("render target must be a 2D A8R8G8B8 or X8R8G8B8 texture, got {}",
+                 (target->format() != Format::A8R8G8B8 && target->format() != Format::X8R8G8B8 &&
+                  target->format() != Format::A32B32G32R32F)))
+    fail("render target must be a 2D A8R8G8B8, X8R8G8B8 or A32B32G32R32F texture, got {}",
          formatName(target->format()));
   resolveClear();
   target_ = std::move(target);
@@ -110,6 +111,7 @@ void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
   if (target && target_.use_count() == 1) {
     pending.color = true;
     pending.colorValue = uint32_t(color);
+    pending.colorFloat = target_->format() == Format::A32B32G32R32F;
     target = false;
   }
   if (depth && target_ && depth_.use_count() == 1 && depth_->width == target_->width() &&
@@ -127,8 +129,7 @@ void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
   auto rows = [&](int top, int bottom) {
     for (int y = top; y < bottom; ++y) {
       if (target)
-        std::fill_n(reinterpret_cast<uint32_t*>(base + y * pitch) + r.left, r.right - r.left,
-                    uint32_t(color));
+        fillColorRow(base + y * pitch, r.left, r.right, uint32_t(color), target_->format() == Format::A32B32G32R32F);
       const int x1 = depth ? std::min(r.right, depth_->width) : 0;
       if (!depth || y >= depth_->height || r.left >= x1) continue;
       const size_t row = size_t(y) * depth_->width;
@@ -862,7 +863,8 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   }
   d.color = target_->data(0, 0);
   d.colorPitch = int(target_->rowPitch(0));
-  d.colorHasAlpha = target_->format() == Format::A8R8G8B8;
+  d.colorHasAlpha = target_->format() != Format::X8R8G8B8;
+  d.colorFloat = target_->format() == Format::A32B32G32R32F;
   d.srgbWrite = st.rs(RS_SRGBWRITEENABLE) != 0;
   d.width = target_->width();
   d.height = target_->height();

@@ -233,10 +233,30 @@ static float linearToSrgb(float c) {
   return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
+// src = blend(src, dst) with the draw's factors and operations; an 8-bit target
+// clamps the shader's colour to [0, 1] first, a float target blends it as it is.
+static void blendInto(const RasterDraw& d, float* src, const float* dst, bool clampSource) {
+  if (clampSource)
+    for (int c = 0; c < 4; ++c) src[c] = std::clamp(src[c], 0.0f, 1.0f);
+  float out[4];
+  uint32_t sf = d.blend.src, df = d.blend.dst;
+  if (sf == BLEND_BOTHSRCALPHA) { sf = BLEND_SRCALPHA; df = BLEND_INVSRCALPHA; }
+  if (sf == BLEND_BOTHINVSRCALPHA) { sf = BLEND_INVSRCALPHA; df = BLEND_SRCALPHA; }
+  for (int c = 0; c < 3; ++c)
+    out[c] = blendOp(d.blend.op, src[c], blendFactor(sf, c, src, dst, d.blend.factor), dst[c],
+                     blendFactor(df, c, src, dst, d.blend.factor));
+  uint32_t sa = d.blend.srcA, da = d.blend.dstA;
+  if (sa == BLEND_BOTHSRCALPHA) { sa = BLEND_SRCALPHA; da = BLEND_INVSRCALPHA; }
+  if (sa == BLEND_BOTHINVSRCALPHA) { sa = BLEND_INVSRCALPHA; da = BLEND_SRCALPHA; }
+  out[3] = blendOp(d.blend.opA, src[3], blendFactor(sa, 3, src, dst, d.blend.factor), dst[3],
+                   blendFactor(da, 3, src, dst, d.blend.factor));
+  std::copy(out, out + 4, src);
+}
+
 void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask,
                 const float (*color)[kBatchLanes], const float* z, bool depthAlreadyTested, bool counterClockwise) {
   const DeviceState& st = *d.state;
-  if (!d.blend.enable && !d.alphaTest && !d.stencil && !d.srgbWrite && d.blend.writeMask == 0xf &&
+  if (!d.colorFloat && !d.blend.enable && !d.alphaTest && !d.stencil && !d.srgbWrite && d.blend.writeMask == 0xf &&
       (!d.depthTest || depthAlreadyTested)) {
     storeOpaque(d, bx, by, mask, color);
     return;
@@ -274,25 +294,18 @@ void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask,
       if (!compare(d.depthFunc, z[l], d.depth->depth[pi])) continue;
       if (d.depthWrite) d.depth->depth[pi] = z[l];
     }
-    uint8_t* px = d.color + size_t(y) * d.colorPitch + size_t(x) * 4;  // B G R A
     const uint32_t wm = d.blend.writeMask;
+    if (d.colorFloat) {  // r, g, b, a floats: no clamp, no quantisation
+      float* pf = reinterpret_cast<float*>(d.color + size_t(y) * d.colorPitch) + size_t(x) * 4;
+      if (d.blend.enable) blendInto(d, src, pf, false);
+      for (int c = 0; c < 4; ++c)
+        if (wm & (1u << c)) pf[c] = src[c];
+      continue;
+    }
+    uint8_t* px = d.color + size_t(y) * d.colorPitch + size_t(x) * 4;  // B G R A
     if (d.blend.enable) {
-      float dst[4] = {px[2] / 255.0f, px[1] / 255.0f, px[0] / 255.0f,
-                      d.colorHasAlpha ? px[3] / 255.0f : 1.0f};
-      for (int c = 0; c < 4; ++c) src[c] = std::clamp(src[c], 0.0f, 1.0f);
-      float out[4];
-      uint32_t sf = d.blend.src, df = d.blend.dst;
-      if (sf == BLEND_BOTHSRCALPHA) { sf = BLEND_SRCALPHA; df = BLEND_INVSRCALPHA; }
-      if (sf == BLEND_BOTHINVSRCALPHA) { sf = BLEND_INVSRCALPHA; df = BLEND_SRCALPHA; }
-      for (int c = 0; c < 3; ++c)
-        out[c] = blendOp(d.blend.op, src[c], blendFactor(sf, c, src, dst, d.blend.factor), dst[c],
-                         blendFactor(df, c, src, dst, d.blend.factor));
-      uint32_t sa = d.blend.srcA, da = d.blend.dstA;
-      if (sa == BLEND_BOTHSRCALPHA) { sa = BLEND_SRCALPHA; da = BLEND_INVSRCALPHA; }
-      if (sa == BLEND_BOTHINVSRCALPHA) { sa = BLEND_INVSRCALPHA; da = BLEND_SRCALPHA; }
-      out[3] = blendOp(d.blend.opA, src[3], blendFactor(sa, 3, src, dst, d.blend.factor), dst[3],
-                       blendFactor(da, 3, src, dst, d.blend.factor));
-      for (int c = 0; c < 4; ++c) src[c] = out[c];
+      const float dst[4] = {px[2] / 255.0f, px[1] / 255.0f, px[0] / 255.0f, d.colorHasAlpha ? px[3] / 255.0f : 1.0f};
+      blendInto(d, src, dst, true);
     }
     if (d.srgbWrite)  // the blended linear value is encoded on write; alpha stays linear
       for (int c = 0; c < 3; ++c) src[c] = linearToSrgb(src[c]);

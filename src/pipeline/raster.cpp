@@ -230,15 +230,24 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
 
 }  // namespace
 
+void fillColorRow(uint8_t* row, int x0, int x1, uint32_t argb, bool isFloat) {
+  if (!isFloat) {
+    std::fill_n(reinterpret_cast<uint32_t*>(row) + x0, x1 - x0, argb);
+    return;
+  }
+  const float rgba[4] = {float((argb >> 16) & 0xff) / 255.0f, float((argb >> 8) & 0xff) / 255.0f,
+                         float(argb & 0xff) / 255.0f, float(argb >> 24) / 255.0f};
+  float* px = reinterpret_cast<float*>(row) + size_t(x0) * 4;
+  for (int x = x0; x < x1; ++x, px += 4) std::copy(rgba, rgba + 4, px);
+}
+
 void applyFill(const RasterDraw::Fill& fill, uint8_t* color, int colorPitch,
                DepthStencilSurface* depth, int x0, int y0, int x1, int y1) {
   x0 = std::max(x0, fill.rect.left), y0 = std::max(y0, fill.rect.top);
   x1 = std::min(x1, fill.rect.right), y1 = std::min(y1, fill.rect.bottom);
   if (x0 >= x1 || y0 >= y1) return;
   for (int y = y0; y < y1; ++y) {
-    if (fill.color)
-      std::fill_n(reinterpret_cast<uint32_t*>(color + size_t(y) * colorPitch) + x0, x1 - x0,
-                  fill.colorValue);
+    if (fill.color) fillColorRow(color + size_t(y) * colorPitch, x0, x1, fill.colorValue, fill.colorFloat);
     const size_t row = size_t(y) * depth->width;  // depth: same size as the target
     if (fill.depth) std::fill_n(depth->depth.data() + row + x0, x1 - x0, fill.z);
     if (fill.stencil) std::fill_n(depth->stencil.data() + row + x0, x1 - x0, fill.stencilValue);

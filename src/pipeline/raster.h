@@ -67,9 +67,10 @@ struct RasterDraw {
   std::vector<Primitive> prims;
   std::vector<float> planes;  // 3 floats per plane
   // Targets
-  uint8_t* color = nullptr;  // A8R8G8B8 rows
+  uint8_t* color = nullptr;  // A8R8G8B8 rows, or A32B32G32R32F rows when colorFloat
   int colorPitch = 0;
   bool colorHasAlpha = true;
+  bool colorFloat = false;  // four floats (r, g, b, a) a pixel, unclamped
   DepthStencilSurface* depth = nullptr;
   int width = 0, height = 0;
   bool earlyDepth = false;
@@ -94,10 +95,15 @@ struct RasterDraw {
     bool color = false, depth = false, stencil = false;  // surfaces (depth: the z values)
     Rect rect;                                             // inside the target
     uint32_t colorValue = 0;
+    bool colorFloat = false;  // the target holds four floats a pixel
     float z = 1.0f;
     uint8_t stencilValue = 0;
   } fill;
 };
+
+// Writes the clear colour `argb` (a D3DCOLOR) to pixels [x0, x1) of one target row:
+// as is for A8R8G8B8/X8R8G8B8, as four floats c/255 for A32B32G32R32F.
+void fillColorRow(uint8_t* row, int x0, int x1, uint32_t argb, bool isFloat);
 
 // Applies `fill` to the part of the target (and depth/stencil) inside [x0,x1)x[y0,y1).
 void applyFill(const RasterDraw::Fill& fill, uint8_t* color, int colorPitch,
