@@ -1129,8 +1129,9 @@ class CodeGen {
         if (m.op == Opcode::SinCos && s > 0) continue;
         bool texCoord = (m.op == Opcode::Tex || m.op == Opcode::TexKill) && s == 0;
         auto need = sourceNeed(m, src);
-        if (texCoord && v_.major == 2 && src.vreg >= 0) {
-          RegType t = physicalType(src.vreg);
+        if (texCoord && v_.major == 2) {
+          // ps_2_x reads coordinates from t# or r# only: a literal (def c#) goes through a temp.
+          const RegType t = src.vreg >= 0 ? physicalType(src.vreg) : src.type;
           if (t != RegType::Temp && t != RegType::Texture) {
             gatherInto(out, m, src, need);
             continue;
@@ -1185,7 +1186,9 @@ class CodeGen {
     bool replicate = true;
     for (int i = 0; i < 4; ++i)
       if (need[i] != 255 && need[i] != need[std::countr_zero(unsigned(mask))]) replicate = false;
-    if (replicate && user.op != Opcode::TexKill) {  // texkill reads the whole register
+    // texkill reads the whole register, texld its coordinate without a swizzle.
+    const bool wholeRegister = user.op == Opcode::TexKill || (user.op == Opcode::Tex && &src == &user.src[0]);
+    if (replicate && !wholeRegister) {
       // one component read everywhere: copy it once and read it replicated
       uint8_t c = need[std::countr_zero(unsigned(mask))];
       movInto(1, {c, c, c, c});
