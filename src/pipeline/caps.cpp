@@ -196,6 +196,10 @@ const std::vector<Field>& fields() {
       flagsField("PrimitiveMiscCaps", &C::primitiveMiscCaps, miscCapsPtr),
       flagsField("RasterCaps", &C::rasterCaps, rasterCapsPtr),
       uintField("NumSimultaneousRTs", &C::maxSimultaneousRenderTargets, 1, 4),
+      floatField("MaxPointSize", &C::maxPointSize),
+      uintField("MaxVertexBlendMatrices", &C::maxVertexBlendMatrices, 0, 4),
+      uintField("MaxVertexBlendMatrixIndex", &C::maxVertexBlendMatrixIndex, 0, 255),
+      uintField("MaxUserClipPlanes", &C::maxUserClipPlanes, 0, 6),
   };
   return table;
 }

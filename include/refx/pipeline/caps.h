@@ -33,6 +33,10 @@ struct CapsProfile {
   uint32_t vertexTextureFilterCaps = 0;  // D3DPTFILTERCAPS_*; nonzero = vertex texture fetch
   uint32_t maxTextureRepeat = 8192;      // texture coordinate range (ps_1_x texcoord clamp)
   uint32_t maxAnisotropy = 1;
+  float maxPointSize = 1;                 // 1: the device draws points one pixel in size
+  uint32_t maxVertexBlendMatrices = 0;    // world matrices blended per vertex (0: no blending)
+  uint32_t maxVertexBlendMatrixIndex = 0; // highest D3DTS_WORLDMATRIX index; 0: not indexed
+  uint32_t maxUserClipPlanes = 0;
 
   int vsMajor() const { return (vertexShaderVersion >> 8) & 0xff; }
   int vsMinor() const { return vertexShaderVersion & 0xff; }
