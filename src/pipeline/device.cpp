@@ -1,6 +1,8 @@
 #include "refx/pipeline/device.h"
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -773,6 +775,8 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     vctx.boolConstants = st.vsConstB.data();
     vctx.boolConstantCount = int(st.vsConstB.size());
   }
+  std::atomic<uint32_t> vertexBoundStops{0};
+  vctx.boundStops = &vertexBoundStops;
   for (auto& r : vregs) exec::prepare(vprog, vctx, r);
   impl_->pool.parallelFor(batches, [&](size_t b, int thread) {
     exec::BatchRegisters& r = vregs[thread];
@@ -892,6 +896,8 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.blend.writeMask = st.rs(RS_COLORWRITEENABLE) & 0xf;
   std::vector<uint64_t> shadedCounter(1, 0);
   d.pixelsShaded = &stats_.pixelsShaded;
+  std::atomic<uint32_t> pixelBoundStops{0};
+  d.execContext.boundStops = &pixelBoundStops;
 
   // Primitive assembly, clipping and setup.
   const Rect bounds = activeRect(st, d.width, d.height);
@@ -1030,6 +1036,25 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   impl_->pendingClear = {};
   rasterize(d, impl_->pool);
   target_->markDirty();
+  ++stats_.draws;
+  reportBoundStops(vs ? "vertex shader" : nullptr, vertexBoundStops.load(), "vertices");
+  reportBoundStops(ps ? "pixel shader" : nullptr, pixelBoundStops.load(), "pixels");
+}
+
+// A shader stopped by kMaxExecutedInstructions leaves the outputs it had written:
+// reported once per draw, since the picture is then not what the program says.
+void Device::reportBoundStops(const char* stage, uint32_t batches, const char* lanes) {
+  if (!stage || batches == 0) return;
+  Diagnostic d;
+  d.severity = Severity::Warning;
+  d.code = "D1001";
+  d.message = fmt::format(
+      "draw {}: the {} stopped after {} executed instructions in {} batch{} of {} {}; their "
+      "outputs hold what was written until then",
+      stats_.draws, stage, exec::kMaxExecutedInstructions, batches, batches == 1 ? "" : "es",
+      kBatchLanes, lanes);
+  if (options_.warningsToStderr) std::fprintf(stderr, "refx: %s\n", d.str().c_str());
+  diagnostics_.report(std::move(d));
 }
 
 }  // namespace refx

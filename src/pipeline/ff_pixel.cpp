@@ -88,6 +88,22 @@ int argIndex(Operand o) {
   }
 }
 
+// A stage whose op takes TEXTURE as an argument while no texture is bound to it
+// passes the previous stage's result through: D3D9's runtime turns the op into
+// SELECTARG1(CURRENT), so the default stage 0, MODULATE(TEXTURE, CURRENT), draws an
+// untextured triangle in its plain diffuse colour (it does not read CURRENT twice).
+// An argument counts when the op reads it: ARG1 unless SELECTARG2, ARG2 unless
+// SELECTARG1, ARG0 only for MULTIPLYADD and LERP.
+void passThroughWithoutTexture(uint32_t& op, std::array<uint32_t, 3>& args) {
+  if (op == TOP_DISABLE || !recipeFor(op)) return;
+  auto isTexture = [&](int i) { return (args[size_t(i)] & TA_SELECTMASK) == TA_TEXTURE; };
+  const bool reads = (isTexture(1) && op != TOP_SELECTARG2) || (isTexture(2) && op != TOP_SELECTARG1) ||
+                     (isTexture(0) && (op == TOP_MULTIPLYADD || op == TOP_LERP));
+  if (!reads) return;
+  op = TOP_SELECTARG1;
+  args[1] = TA_CURRENT;
+}
+
 bool recipeReadsTexture(const Recipe* r, const std::array<uint32_t, 3>& args) {
   if (!r) return false;
   for (Operand o : r->src) {
@@ -189,10 +205,16 @@ class Builder {
       st.resultTemp = (state_.tss(s, TSS_RESULTARG) & TA_SELECTMASK) == TA_TEMP;
       st.projected = (state_.tss(s, TSS_TEXTURETRANSFORMFLAGS) & TTFF_PROJECTED) != 0;
       st.hasTexture = cfg_.textures[s] != nullptr;
+      if (!st.hasTexture && !st.bump) {
+        passThroughWithoutTexture(st.colorOp, st.colorArgs);
+        passThroughWithoutTexture(st.alphaOp, st.alphaArgs);
+      }
     }
     // A stage samples its texture when its combiner reads TEXTURE, when it is a
     // bump stage feeding a sampled stage, or after a PREMODULATE stage. Decided
-    // from the last stage backwards. Without a texture, TEXTURE reads CURRENT.
+    // from the last stage backwards. Without a texture the stage passes CURRENT
+    // through (passThroughWithoutTexture); what is left reading TEXTURE (the
+    // BLENDTEXTUREALPHA ops' implicit alpha) reads CURRENT.
     for (int s = active_ - 1; s >= 0; --s) {
       StageState& st = stages_[s];
       bool reads = false;
@@ -326,7 +348,7 @@ class Builder {
       r.constant = toVec4(colorFromD3D(state_.tss(s, TSS_CONSTANT)));
       r.temp = temp;
       r.tempWritten = tempWritten;
-      r.texture = current;  // no texture bound: TEXTURE reads CURRENT
+      r.texture = current;  // no texture bound (see passThroughWithoutTexture)
       if (st.sample) r.texture = emitSample(s, previousTexture);
       if (s > 0 && stages_[s - 1].colorOp == TOP_PREMODULATE && st.hasTexture) {
         // PREMODULATE in stage s-1: CURRENT of this stage = CURRENT * TEXTURE.

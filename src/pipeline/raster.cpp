@@ -248,6 +248,7 @@ void applyFill(const RasterDraw::Fill& fill, uint8_t* color, int colorPitch,
   if (x0 >= x1 || y0 >= y1) return;
   for (int y = y0; y < y1; ++y) {
     if (fill.color) fillColorRow(color + size_t(y) * colorPitch, x0, x1, fill.colorValue, fill.colorFloat);
+    if (!depth) continue;  // a target without a depth-stencil surface
     const size_t row = size_t(y) * depth->width;  // depth: same size as the target
     if (fill.depth) std::fill_n(depth->depth.data() + row + x0, x1 - x0, fill.z);
     if (fill.stencil) std::fill_n(depth->stencil.data() + row + x0, x1 - x0, fill.stencilValue);

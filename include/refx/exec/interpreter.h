@@ -2,6 +2,7 @@
 // instruction per batch; each instruction's body is a loop over the lanes.
 #pragma once
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -37,6 +38,9 @@ struct ExecContext {
   int intConstantCount = 0;
   const bool* boolConstants = nullptr;  // ConstBool file (b#)
   int boolConstantCount = 0;
+  // Counts the batches that kMaxExecutedInstructions stopped before the program's
+  // end (their outputs hold what was written so far); null: not counted.
+  std::atomic<uint32_t>* boundStops = nullptr;
 };
 
 struct PreparedProgram;  // see prepare()

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "refx/core/color.h"
+#include "refx/core/diagnostics.h"
 #include "refx/pipeline/caps.h"
 #include "refx/pipeline/shader_object.h"
 #include "refx/pipeline/state.h"
@@ -29,6 +30,8 @@ enum class Precision { Exact, Hardware };
 struct DeviceOptions {
   int threads = 0;  // 0: all cores
   Precision precision = Precision::Exact;
+  // Warnings (Device::diagnostics()) are also printed on stderr as they happen.
+  bool warningsToStderr = true;
 };
 
 class StateBlock {
@@ -43,6 +46,7 @@ class StateBlock {
 struct DrawStats {
   uint64_t pixelsShaded = 0;  // pixels that ran the pixel stage (summed over draws)
   uint64_t primitives = 0;
+  uint64_t draws = 0;
 };
 
 class Device {
@@ -132,6 +136,11 @@ class Device {
   // ValidateDevice against the active caps profile.
   ValidationResult validate() const { return validateDeviceState(state_, caps_); }
 
+  // What the device reported while drawing, at most one warning per draw and kind
+  // (code D1001: a shader stopped by the executed-instruction bound).
+  const DiagnosticSink& diagnostics() const { return diagnostics_; }
+  void clearDiagnostics() { diagnostics_ = {}; }
+
   const DrawStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
 
@@ -140,6 +149,7 @@ class Device {
   void draw(d3d::PrimitiveType type, uint32_t primitiveCount, int32_t baseVertex,
             const void* indices, bool index32, uint32_t vertexCount, uint32_t firstVertex);
   void resolveClear() const;  // writes a Clear that was deferred to the next draw
+  void reportBoundStops(const char* stage, uint32_t batches, const char* lanes);
 
   CapsProfile caps_;
   DeviceOptions options_;
@@ -147,6 +157,7 @@ class Device {
   TexturePtr target_;
   DepthStencilPtr depth_;
   DrawStats stats_;
+  DiagnosticSink diagnostics_;
   std::unique_ptr<Impl> impl_;
 };
 
