@@ -9,8 +9,8 @@
 #include "ff_vertex.h"
 #include "raster.h"
 #include "refx/core/diagnostics.h"
-#include "render_targets.h"
 #include "refx/resource/sampler.h"
+#include "render_targets.h"
 #include "vertex_fetch.h"
 
 namespace refx {

@@ -9,6 +9,7 @@
 
 #include "device_helpers.h"
 #include "refx/core/diagnostics.h"
+#include "refx/hlsl/compiler.h"
 #include "refx/pipeline/device.h"
 #include "refx/shader/assembler.h"
 
@@ -180,6 +181,44 @@ TEST(MultipleRenderTargets, ColorOutputsAreWrittenInOrder) {
     dev->createPixelShader(shader::assembleTokens("ps_2_0\ndef c0, 1, 0, 0, 1\nmov oC0, c0\nmov oC3, c0\n", "t.psh"));
   });
   EXPECT_NE(e.find("oC3 is written but oC1 is not"), std::string::npos) << e;
+}
+
+TEST(MultipleRenderTargets, HlslColorSemanticsReachTheirTargets) {
+  // COLOR0-COLOR2 outputs of an HLSL pixel shader are oC0-oC2, for ps_2_0 and ps_3_0:
+  // target n holds (n + 1)/4 in red, 1 - (n + 1)/4 in green: 0.25 -> 63.75 -> 64,
+  // 0.75 -> 191.25 -> 191, 0.5 -> 127.5 -> 128 (round to nearest).
+  const char* source =
+      "struct Out { float4 c0 : COLOR0; float4 c1 : COLOR1; float4 c2 : COLOR2; };\n"
+      "Out main() {\n"
+      "  Out o;\n"
+      "  o.c0 = float4(0.25, 0.75, 0, 1);\n"
+      "  o.c1 = float4(0.5, 0.5, 0, 1);\n"
+      "  o.c2 = float4(0.75, 0.25, 0, 1);\n"
+      "  return o;\n"
+      "}\n";
+  for (const char* profile : {"ps_2_0", "ps_3_0"}) {
+    hlsl::CompileOptions options;
+    options.profile = profile;
+    const hlsl::CompileResult compiled = hlsl::compile(source, "mrt.hlsl", options);
+    ASSERT_TRUE(compiled.ok()) << compiled.messages();
+    auto dev = mrtDevice();
+    dev->setRenderTarget(1, target(8, 8));
+    dev->setRenderTarget(2, target(8, 8));
+    dev->clear(d3d::CLEAR_TARGET, 0xff000000, 1.0f, 0);
+    dev->setPixelShader(dev->createPixelShader(compiled.tokens));
+    // A clip-space quad over the whole target, passed through (ps_3_0 needs a vs_3_0).
+    const bool sm3 = std::string(profile) == "ps_3_0";
+    dev->setVertexShader(dev->createVertexShader(shader::assembleTokens(
+        sm3 ? "vs_3_0\ndcl_position v0\ndcl_position o0\nmov o0, v0\n" : "vs_2_0\ndcl_position v0\nmov oPos, v0\n",
+        "t.vsh")));
+    const float quad[] = {-1, 1, 0.5f, 1, 1, 1, 0.5f, 1, -1, -1, 0.5f, 1, 1, -1, 0.5f, 1};
+    dev->setFVF(d3d::FVF_XYZW);
+    dev->setRenderState(d3d::RS_CULLMODE, d3d::CULL_NONE);
+    dev->drawPrimitiveUP(d3d::PT_TRIANGLESTRIP, 2, quad, 16);
+    EXPECT_EQ(texel32(*dev->renderTarget(0), 4, 4), 0xff40bf00u) << profile;
+    EXPECT_EQ(texel32(*dev->renderTarget(1), 4, 4), 0xff808000u) << profile;
+    EXPECT_EQ(texel32(*dev->renderTarget(2), 4, 4), 0xffbf4000u) << profile;
+  }
 }
 
 }  // namespace
