@@ -47,6 +47,13 @@ TEST(SceneRenderTargets, ParsesTheCommandAndTargetedExpectations) {
   EXPECT_EQ(s.expectations[1].target, 0);
 }
 
+TEST(SceneRenderTargets, SizeTakesAFloatFormat) {
+  EXPECT_EQ(parseSceneScript("size 4 4 A32B32G32R32F\n", "s.scene").targetFormat, Format::A32B32G32R32F);
+  EXPECT_EQ(parseError("size 4 4 R5G6B5\n"),
+            "s.scene:1:10: error: size: render target format must be A8R8G8B8, X8R8G8B8 or "
+            "A32B32G32R32F, got 'R5G6B5'");
+}
+
 TEST(SceneRenderTargets, ReportsBadCommands) {
   const std::pair<const char*, const char*> cases[] = {
       {"rendertarget 0 4 4 A8R8G8B8\n", "s.scene:1:14: error: rendertarget: the render target index (0 is `size`) 0 is out of range (1 to 3)"},
