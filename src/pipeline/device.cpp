@@ -12,6 +12,7 @@
 #include "raster.h"
 #include "refx/core/diagnostics.h"
 #include "refx/resource/sampler.h"
+#include "render_targets.h"
 #include "vertex_fetch.h"
 
 namespace refx {
@@ -39,9 +40,11 @@ void Device::setThreads(int threads) {
   impl_ = std::make_unique<Impl>(threads);
 }
 
-const TexturePtr& Device::renderTarget() const {
+const TexturePtr& Device::renderTarget(int index) const {
+  if (index < 0 || index >= kMaxRenderTargets)
+    fail("render target index {} is out of range (0-{})", index, kMaxRenderTargets - 1);
   resolveClear();
-  return target_;
+  return targets_[size_t(index)];
 }
 
 const DepthStencilPtr& Device::depthStencilSurface() const {
@@ -54,29 +57,26 @@ void Device::resolveClear() const {
   if (!f.color && !f.depth && !f.stencil) return;
   const RasterDraw::Fill fill = f;
   f = {};
-  uint8_t* color = fill.color ? target_->data(0, 0) : nullptr;
-  const int pitch = fill.color ? int(target_->rowPitch(0)) : 0;
   const Rect& r = fill.rect;
   constexpr int kBand = 32;
   const int bands = (r.bottom - r.top + kBand - 1) / kBand;
   impl_->pool.parallelFor(size_t(std::max(bands, 0)), [&](size_t i, int) {
     const int top = r.top + int(i) * kBand;
-    applyFill(fill, color, pitch, depth_.get(), r.left, top, r.right, std::min(top + kBand, r.bottom));
+    applyFill(fill, depth_.get(), r.left, top, r.right, std::min(top + kBand, r.bottom));
   });
-  if (fill.color) target_->markDirty();
+  if (fill.color)
+    for (const TexturePtr& t : targets_)
+      if (t) t->markDirty();
 }
 
-void Device::setRenderTarget(TexturePtr target) {
-  if (target && (target->type() != TextureType::Texture2D ||
-                 (target->format() != Format::A8R8G8B8 && target->format() != Format::X8R8G8B8 &&
-                  target->format() != Format::A32B32G32R32F)))
-    fail("render target must be a 2D A8R8G8B8, X8R8G8B8 or A32B32G32R32F texture, got {}",
-         formatName(target->format()));
+void Device::setRenderTarget(int index, TexturePtr target) {
+  checkRenderTarget(index, target.get(), targets_, caps_);
   resolveClear();
-  target_ = std::move(target);
-  if (target_) {
-    state_.viewport = Viewport{0, 0, target_->width(), target_->height(), 0, 1};
-    state_.scissor = Rect{0, 0, target_->width(), target_->height()};
+  targets_[size_t(index)] = std::move(target);
+  if (index == 0) {
+    const TexturePtr& t = targets_[0];
+    state_.viewport = Viewport{0, 0, t->width(), t->height(), 0, 1};
+    state_.scissor = Rect{0, 0, t->width(), t->height()};
   }
 }
 
@@ -100,24 +100,27 @@ static Rect activeRect(const DeviceState& s, int w, int h) {
 
 void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
   resolveClear();
-  const int w = target_ ? target_->width() : (depth_ ? depth_->width : 0);
-  const int h = target_ ? target_->height() : (depth_ ? depth_->height : 0);
+  const TexturePtr& target0 = targets_[0];
+  const int w = target0 ? target0->width() : (depth_ ? depth_->width : 0);
+  const int h = target0 ? target0->height() : (depth_ ? depth_->height : 0);
   const Rect r = activeRect(state_, w, h);
-  bool target = (flags & CLEAR_TARGET) && target_;
+  bool target = (flags & CLEAR_TARGET) && target0;
   bool depth = depth_ && (flags & (CLEAR_ZBUFFER | CLEAR_STENCIL));
   if (r.top >= r.bottom || r.left >= r.right || (!target && !depth)) return;
   // Deferred to the next draw when nothing but the device can see the surfaces (no
   // other reference to them; the accessors resolve it) and depth matches the target.
   RasterDraw::Fill& pending = impl_->pendingClear;
   pending.rect = r;
-  if (target && target_.use_count() == 1) {
+  if (target && std::all_of(targets_.begin(), targets_.end(),
+                            [](const TexturePtr& t) { return !t || t.use_count() == 1; })) {
     pending.color = true;
     pending.colorValue = uint32_t(color);
-    pending.colorFloat = target_->format() == Format::A32B32G32R32F;
+    for (size_t i = 0; i < targets_.size(); ++i)
+      pending.colorTargets[i] = targets_[i] ? colorTargetOf(*targets_[i], 0xf) : ColorTarget{};
     target = false;
   }
-  if (depth && target_ && depth_.use_count() == 1 && depth_->width == target_->width() &&
-      depth_->height == target_->height()) {
+  if (depth && target0 && depth_.use_count() == 1 && depth_->width == target0->width() &&
+      depth_->height == target0->height()) {
     pending.depth = (flags & CLEAR_ZBUFFER) != 0;
     pending.stencil = (flags & CLEAR_STENCIL) != 0;
     pending.z = std::clamp(z, 0.0f, 1.0f);
@@ -125,13 +128,15 @@ void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
     depth = false;
   }
   if (!target && !depth) return;
-  uint8_t* base = target ? target_->data(0, 0) : nullptr;
-  const size_t pitch = target ? target_->rowPitch(0) : 0;
+  std::array<ColorTarget, kMaxRenderTargets> colorTargets{};
+  if (target)
+    for (size_t i = 0; i < targets_.size(); ++i)
+      if (targets_[i]) colorTargets[i] = colorTargetOf(*targets_[i], 0xf);
   const float zc = std::clamp(z, 0.0f, 1.0f);
   auto rows = [&](int top, int bottom) {
     for (int y = top; y < bottom; ++y) {
-      if (target)
-        fillColorRow(base + y * pitch, r.left, r.right, uint32_t(color), target_->format() == Format::A32B32G32R32F);
+      for (const ColorTarget& t : colorTargets)
+        if (t.data) fillColorRow(t.data + size_t(y) * t.pitch, r.left, r.right, uint32_t(color), t.isFloat);
       const int x1 = depth ? std::min(r.right, depth_->width) : 0;
       if (!depth || y >= depth_->height || r.left >= x1) continue;
       const size_t row = size_t(y) * depth_->width;
@@ -152,7 +157,9 @@ void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
     });
   else
     rows(r.top, r.bottom);
-  if (target) target_->markDirty();
+  if (target)
+    for (const TexturePtr& t : targets_)
+      if (t) t->markDirty();
 }
 
 void Device::setRenderState(RenderState s, uint32_t value) {
@@ -668,7 +675,7 @@ void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bou
 
 void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVertex,
                   const void* indices, bool index32, uint32_t vertexCount, uint32_t firstVertex) {
-  if (!target_) fail("draw without a render target");
+  if (!targets_[0]) fail("draw without a render target");
   if (type < PT_POINTLIST || type > PT_TRIANGLEFAN) fail("unknown primitive type {}", uint32_t(type));
   const uint32_t indexCount = verticesForPrimitives(type, primitiveCount);
   if (primitiveCount == 0 || indexCount == 0) return;
@@ -865,13 +872,16 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
                                              flat && (i == kPixelInDiffuse || i == kPixelInSpecular),
                                              (wrapBits & (1u << c)) != 0});
   }
-  d.color = target_->data(0, 0);
-  d.colorPitch = int(target_->rowPitch(0));
-  d.colorHasAlpha = target_->format() != Format::X8R8G8B8;
-  d.colorFloat = target_->format() == Format::A32B32G32R32F;
+  // Target n takes oCn of a ps_2_0 or later shader that writes it; fixed function and
+  // ps_1_x write target 0 only. A target without its oCn is left as it was (D3D9 leaves
+  // its contents undefined).
+  for (int i = 0; i < kMaxRenderTargets; ++i)
+    if (targets_[size_t(i)] && (i == 0 || (ps && ps->version().atLeast(2, 0) && writesOutput(pprog, i))))
+      d.targets[size_t(i)] = colorTargetOf(*targets_[size_t(i)], colorWriteMask(st, i));
   d.srgbWrite = st.rs(RS_SRGBWRITEENABLE) != 0;
-  d.width = target_->width();
-  d.height = target_->height();
+  d.dither = st.rs(RS_DITHERENABLE) != 0;
+  d.width = targets_[0]->width();
+  d.height = targets_[0]->height();
   d.depth = depth_.get();
   d.depthTest = depth_ && st.rs(RS_ZENABLE) != ZB_FALSE;
   d.depthWrite = d.depthTest && st.rs(RS_ZWRITEENABLE) != 0;
@@ -893,7 +903,6 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.blend.dstA = separate ? st.rs(RS_DESTBLENDALPHA) : d.blend.dst;
   d.blend.opA = separate ? st.rs(RS_BLENDOPALPHA) : d.blend.op;
   d.blend.factor = colorFromD3D(st.rs(RS_BLENDFACTOR));
-  d.blend.writeMask = st.rs(RS_COLORWRITEENABLE) & 0xf;
   std::vector<uint64_t> shadedCounter(1, 0);
   d.pixelsShaded = &stats_.pixelsShaded;
   std::atomic<uint32_t> pixelBoundStops{0};
@@ -1035,7 +1044,8 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.fill = impl_->pendingClear;
   impl_->pendingClear = {};
   rasterize(d, impl_->pool);
-  target_->markDirty();
+  for (const TexturePtr& t : targets_)
+    if (t) t->markDirty();
   ++stats_.draws;
   reportBoundStops(vs ? "vertex shader" : nullptr, vertexBoundStops.load(), "vertices");
   reportBoundStops(ps ? "pixel shader" : nullptr, pixelBoundStops.load(), "pixels");

@@ -158,13 +158,13 @@ typedef uint32_t v8u __attribute__((vector_size(32)));
 
 // Opaque writes with nothing but an (already done) depth test: convert the whole
 // batch to 8 bits at once and store the live lanes.
-static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
+static void storeOpaque(const ColorTarget& t, int width, int height, int bx, int by, uint16_t mask,
                         const float (*color)[kBatchLanes]) {
   alignas(64) uint32_t packed[kBatchLanes];
   const v8f zero{}, k255 = zero + 255.0f, half = zero + 0.5f;
   [[maybe_unused]] const v8f one = zero + 1.0f;
-  const v8i alphaOr = v8i{} + int32_t(d.colorHasAlpha ? 0u : 0xff000000u);
-  const bool inside = bx + 4 <= d.width && by + 4 <= d.height;
+  const v8i alphaOr = v8i{} + int32_t(t.hasAlpha ? 0u : 0xff000000u);
+  const bool inside = bx + 4 <= width && by + 4 <= height;
   const bool whole = mask == 0xffff && inside;
 #if defined(__AVX2__)
   // Inside the surface a partly covered batch is stored row by row with masked stores.
@@ -197,9 +197,9 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
       // Lanes k..k+7 are rows k/4 and k/4 + 1: lanes 0,1,4,5 and 2,3,6,7 of the half.
       const v4u r0 = __builtin_shufflevector(v8u(p), v8u(p), 0, 1, 4, 5);
       const v4u r1 = __builtin_shufflevector(v8u(p), v8u(p), 2, 3, 6, 7);
-      uint8_t* row = d.color + size_t(by + k / 4) * d.colorPitch + size_t(bx) * 4;
+      uint8_t* row = t.data + size_t(by + k / 4) * t.pitch + size_t(bx) * 4;
       __builtin_memcpy(row, &r0, sizeof r0);
-      __builtin_memcpy(row + d.colorPitch, &r1, sizeof r1);
+      __builtin_memcpy(row + t.pitch, &r1, sizeof r1);
     } else if (masked) {
 #if defined(__AVX2__)
       const int live = (mask >> k) & 0xff;
@@ -213,9 +213,9 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
       __builtin_memcpy(&vr1, &r1, sizeof vr1);
       __builtin_memcpy(&vm0, &m0, sizeof vm0);
       __builtin_memcpy(&vm1, &m1, sizeof vm1);
-      uint8_t* row = d.color + size_t(by + k / 4) * d.colorPitch + size_t(bx) * 4;
+      uint8_t* row = t.data + size_t(by + k / 4) * t.pitch + size_t(bx) * 4;
       _mm_maskstore_epi32(reinterpret_cast<int*>(row), vm0, vr0);
-      _mm_maskstore_epi32(reinterpret_cast<int*>(row + d.colorPitch), vm1, vr1);
+      _mm_maskstore_epi32(reinterpret_cast<int*>(row + t.pitch), vm1, vr1);
 #endif
     } else {
       __builtin_memcpy(packed + k, &p, sizeof p);
@@ -224,7 +224,7 @@ static void storeOpaque(const RasterDraw& d, int bx, int by, uint16_t mask,
   if (whole || masked) return;
   for (int l = 0; l < kBatchLanes; ++l)
     if (mask & (1 << l))
-      reinterpret_cast<uint32_t*>(d.color + size_t(by + kLaneY[l]) * d.colorPitch)[bx + kLaneX[l]] = packed[l];
+      reinterpret_cast<uint32_t*>(t.data + size_t(by + kLaneY[l]) * t.pitch)[bx + kLaneX[l]] = packed[l];
 }
 
 // sRGB encoding of a linear value in [0,1] (IEC 61966-2-1).
@@ -253,21 +253,63 @@ static void blendInto(const RasterDraw& d, float* src, const float* dst, bool cl
   std::copy(out, out + 4, src);
 }
 
-void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask,
-                const float (*color)[kBatchLanes], const float* z, bool depthAlreadyTested, bool counterClockwise) {
+// Writes one pixel of target t: blend with what it holds, sRGB encoding and
+// quantisation for 8-bit targets, then the channels its write mask enables.
+static void writePixel(const RasterDraw& d, const ColorTarget& t, int x, int y, float* src) {
+  const uint32_t wm = t.writeMask;
+  if (t.isFloat) {  // r, g, b, a floats: no clamp, no quantisation
+    float* pf = reinterpret_cast<float*>(t.data + size_t(y) * t.pitch) + size_t(x) * 4;
+    if (d.blend.enable) blendInto(d, src, pf, false);
+    for (int c = 0; c < 4; ++c)
+      if (wm & (1u << c)) pf[c] = src[c];
+    return;
+  }
+  uint8_t* px = t.data + size_t(y) * t.pitch + size_t(x) * 4;  // B G R A
+  if (d.blend.enable) {
+    const float dst[4] = {px[2] / 255.0f, px[1] / 255.0f, px[0] / 255.0f, t.hasAlpha ? px[3] / 255.0f : 1.0f};
+    blendInto(d, src, dst, true);
+  }
+  if (d.srgbWrite)  // the blended linear value is encoded on write; alpha stays linear
+    for (int c = 0; c < 3; ++c) src[c] = linearToSrgb(src[c]);
+  // Dithering spreads the colour's quantisation error; alpha rounds to nearest.
+  if (wm & CW_RED) px[2] = quantizeUnorm8(src[0], d.dither, x, y);
+  if (wm & CW_GREEN) px[1] = quantizeUnorm8(src[1], d.dither, x, y);
+  if (wm & CW_BLUE) px[0] = quantizeUnorm8(src[2], d.dither, x, y);
+  if (wm & CW_ALPHA) px[3] = t.hasAlpha ? toUnorm8(src[3]) : 255;
+}
+
+uint8_t quantizeUnorm8(float v, bool dither, int x, int y) {
+  if (!dither) return toUnorm8(v);
+  // 4x4 Bayer matrix: each of 0..15 once, neighbours as far apart as possible.
+  static constexpr uint8_t kBayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+  if (!(v > 0.0f)) return 0;
+  if (v >= 1.0f) return 255;
+  const float t = (float(kBayer[y & 3][x & 3]) + 0.5f) / 16.0f;
+  return static_cast<uint8_t>(std::min(v * 255.0f + t, 255.0f));
+}
+
+// Whether target t takes the batch as it is: an 8-bit target, all channels written,
+// nothing between the shader and the store.
+static bool opaqueStore(const RasterDraw& d, const ColorTarget& t) {
+  return !t.data || (!t.isFloat && t.writeMask == 0xf && !d.blend.enable && !d.srgbWrite && !d.dither);
+}
+
+void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::LaneVec4* colors,
+                const float* z, bool depthAlreadyTested, bool counterClockwise) {
   const DeviceState& st = *d.state;
-  if (!d.colorFloat && !d.blend.enable && !d.alphaTest && !d.stencil && !d.srgbWrite && d.blend.writeMask == 0xf &&
-      (!d.depthTest || depthAlreadyTested)) {
-    storeOpaque(d, bx, by, mask, color);
+  if (!d.alphaTest && !d.stencil && (!d.depthTest || depthAlreadyTested) &&
+      std::all_of(d.targets.begin(), d.targets.end(), [&](const ColorTarget& t) { return opaqueStore(d, t); })) {
+    for (size_t i = 0; i < d.targets.size(); ++i)
+      if (d.targets[i].data) storeOpaque(d.targets[i], d.width, d.height, bx, by, mask, colors[i].c);
     return;
   }
   for (int l = 0; l < kBatchLanes; ++l) {
     if (!(mask & (1 << l))) continue;
     const int x = bx + kLaneX[l], y = by + kLaneY[l];
-    float src[4] = {color[0][l], color[1][l], color[2][l], color[3][l]};
-    // Alpha test compares in 8-bit as hardware does (ALPHAREF is 0..255).
+    // Alpha test compares oC0's alpha in 8-bit as hardware does (ALPHAREF is 0..255); a
+    // failing pixel is discarded from every target.
     if (d.alphaTest) {
-      int a8 = toUnorm8(src[3]);
+      int a8 = toUnorm8(colors[0].c[3][l]);
       if (!compareU(d.alphaFunc, uint32_t(a8), st.rs(RS_ALPHAREF) & 0xff)) continue;
     }
     const size_t pi = size_t(y) * d.width + x;
@@ -294,25 +336,11 @@ void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask,
       if (!compare(d.depthFunc, z[l], d.depth->depth[pi])) continue;
       if (d.depthWrite) d.depth->depth[pi] = z[l];
     }
-    const uint32_t wm = d.blend.writeMask;
-    if (d.colorFloat) {  // r, g, b, a floats: no clamp, no quantisation
-      float* pf = reinterpret_cast<float*>(d.color + size_t(y) * d.colorPitch) + size_t(x) * 4;
-      if (d.blend.enable) blendInto(d, src, pf, false);
-      for (int c = 0; c < 4; ++c)
-        if (wm & (1u << c)) pf[c] = src[c];
-      continue;
+    for (size_t i = 0; i < d.targets.size(); ++i) {
+      if (!d.targets[i].data) continue;
+      float src[4] = {colors[i].c[0][l], colors[i].c[1][l], colors[i].c[2][l], colors[i].c[3][l]};
+      writePixel(d, d.targets[i], x, y, src);
     }
-    uint8_t* px = d.color + size_t(y) * d.colorPitch + size_t(x) * 4;  // B G R A
-    if (d.blend.enable) {
-      const float dst[4] = {px[2] / 255.0f, px[1] / 255.0f, px[0] / 255.0f, d.colorHasAlpha ? px[3] / 255.0f : 1.0f};
-      blendInto(d, src, dst, true);
-    }
-    if (d.srgbWrite)  // the blended linear value is encoded on write; alpha stays linear
-      for (int c = 0; c < 3; ++c) src[c] = linearToSrgb(src[c]);
-    if (wm & CW_RED) px[2] = toUnorm8(src[0]);
-    if (wm & CW_GREEN) px[1] = toUnorm8(src[1]);
-    if (wm & CW_BLUE) px[0] = toUnorm8(src[2]);
-    if (wm & CW_ALPHA) px[3] = d.colorHasAlpha ? toUnorm8(src[3]) : 255;
   }
 }
 

@@ -17,8 +17,15 @@ bool compare(uint32_t func, float a, float b);
 uint16_t earlyDepthTest(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z,
                         bool writeDepth);
 
-// Full merge of shaded lanes: color[c][lane] in float, z per lane.
-void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const float (*color)[kBatchLanes],
+// Full merge of shaded lanes: colors[i] is the pixel program's output i (oCi, in float)
+// for render target i, z per lane. Alpha test reads oC0; the tests' outcome and the
+// blend state apply to every target (D3DPMISCCAPS_MRTPOSTPIXELSHADERBLENDING).
+void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::LaneVec4* colors,
                 const float* z, bool depthAlreadyTested, bool counterClockwise);
+
+// Quantises a colour channel to 8 bits: round to nearest, or with D3DRS_DITHERENABLE
+// floor(v * 255 + t) where t = (B + 0.5) / 16 and B is the 4x4 Bayer matrix entry of
+// pixel (x & 3, y & 3) -- the same value on average, a pattern instead of one step.
+uint8_t quantizeUnorm8(float v, bool dither, int x, int y);
 
 }  // namespace refx::pipeline

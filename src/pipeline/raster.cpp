@@ -198,8 +198,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   }
   shaded += static_cast<uint64_t>(__builtin_popcount(mask));
   if (!mask) return;
-  mergeBatch(d, bx, by, mask, w.regs.outputs[kPixelOutColor].c, w.z, d.earlyDepth,
-             p.counterClockwise);
+  mergeBatch(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
 }
 
 void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorker& w,
@@ -208,7 +207,7 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
   const int x0 = tx * kTileSize, y0 = ty * kTileSize;
   const int x1 = std::min(x0 + kTileSize, d.width) - 1, y1 = std::min(y0 + kTileSize, d.height) - 1;
   uint64_t count = 0;  // local: the per-thread counters share cache lines
-  applyFill(d.fill, d.color, d.colorPitch, d.depth, x0, y0, x1 + 1, y1 + 1);
+  applyFill(d.fill, d.depth, x0, y0, x1 + 1, y1 + 1);
   for (uint32_t pi : bins.lists[tile]) {
     const Primitive& p = d.prims[pi];
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
@@ -241,13 +240,15 @@ void fillColorRow(uint8_t* row, int x0, int x1, uint32_t argb, bool isFloat) {
   for (int x = x0; x < x1; ++x, px += 4) std::copy(rgba, rgba + 4, px);
 }
 
-void applyFill(const RasterDraw::Fill& fill, uint8_t* color, int colorPitch,
-               DepthStencilSurface* depth, int x0, int y0, int x1, int y1) {
+void applyFill(const RasterDraw::Fill& fill, DepthStencilSurface* depth, int x0, int y0, int x1,
+               int y1) {
   x0 = std::max(x0, fill.rect.left), y0 = std::max(y0, fill.rect.top);
   x1 = std::min(x1, fill.rect.right), y1 = std::min(y1, fill.rect.bottom);
   if (x0 >= x1 || y0 >= y1) return;
   for (int y = y0; y < y1; ++y) {
-    if (fill.color) fillColorRow(color + size_t(y) * colorPitch, x0, x1, fill.colorValue, fill.colorFloat);
+    if (fill.color)
+      for (const ColorTarget& t : fill.colorTargets)
+        if (t.data) fillColorRow(t.data + size_t(y) * t.pitch, x0, x1, fill.colorValue, t.isFloat);
     if (!depth) continue;  // a target without a depth-stencil surface
     const size_t row = size_t(y) * depth->width;  // depth: same size as the target
     if (fill.depth) std::fill_n(depth->depth.data() + row + x0, x1 - x0, fill.z);

@@ -55,6 +55,18 @@ struct Primitive {
   uint32_t planeOffset;  // into RasterDraw::planes: [invW, z, then inputs' attr/w (or attr when flat)]
 };
 
+// Direct3D 9 binds up to four render targets (SetRenderTarget 0-3).
+constexpr int kMaxRenderTargets = 4;
+
+// One colour render target as the output merger and Clear write it.
+struct ColorTarget {
+  uint8_t* data = nullptr;  // A8R8G8B8/X8R8G8B8 rows, or A32B32G32R32F rows; null: none
+  int pitch = 0;
+  bool hasAlpha = true;      // X8R8G8B8 stores 255 as alpha
+  bool isFloat = false;      // four floats (r, g, b, a) a pixel, unclamped
+  uint32_t writeMask = 0xf;  // D3DRS_COLORWRITEENABLE (target 0) or COLORWRITEENABLE1-3
+};
+
 // Everything the tile workers need for one draw.
 struct RasterDraw {
   const DeviceState* state = nullptr;
@@ -66,11 +78,9 @@ struct RasterDraw {
   bool shaderDepth = false;   // the program writes the depth (output exec::kPixelOutDepth .x)
   std::vector<Primitive> prims;
   std::vector<float> planes;  // 3 floats per plane
-  // Targets
-  uint8_t* color = nullptr;  // A8R8G8B8 rows, or A32B32G32R32F rows when colorFloat
-  int colorPitch = 0;
-  bool colorHasAlpha = true;
-  bool colorFloat = false;  // four floats (r, g, b, a) a pixel, unclamped
+  // Targets: [i] is written from the pixel program's output i (oCi); a target that is
+  // not bound, or whose oCi the program does not write, has no data and stays as it was.
+  std::array<ColorTarget, kMaxRenderTargets> targets;
   DepthStencilSurface* depth = nullptr;
   int width = 0, height = 0;
   bool earlyDepth = false;
@@ -79,9 +89,9 @@ struct RasterDraw {
     bool enable;
     uint32_t src, dst, op, srcA, dstA, opA;
     Color4 factor;
-    uint32_t writeMask;
   } blend{};
   bool srgbWrite = false;  // D3DRS_SRGBWRITEENABLE: linear -> sRGB on write
+  bool dither = false;     // D3DRS_DITHERENABLE: ordered dithering into 8-bit targets
   bool alphaTest = false;
   uint32_t alphaFunc = 8;
   float alphaRef = 0;
@@ -95,7 +105,7 @@ struct RasterDraw {
     bool color = false, depth = false, stencil = false;  // surfaces (depth: the z values)
     Rect rect;                                             // inside the target
     uint32_t colorValue = 0;
-    bool colorFloat = false;  // the target holds four floats a pixel
+    std::array<ColorTarget, kMaxRenderTargets> colorTargets;  // every bound render target
     float z = 1.0f;
     uint8_t stencilValue = 0;
   } fill;
@@ -105,9 +115,9 @@ struct RasterDraw {
 // as is for A8R8G8B8/X8R8G8B8, as four floats c/255 for A32B32G32R32F.
 void fillColorRow(uint8_t* row, int x0, int x1, uint32_t argb, bool isFloat);
 
-// Applies `fill` to the part of the target (and depth/stencil) inside [x0,x1)x[y0,y1).
-void applyFill(const RasterDraw::Fill& fill, uint8_t* color, int colorPitch,
-               DepthStencilSurface* depth, int x0, int y0, int x1, int y1);
+// Applies `fill` to the part of the targets (and depth/stencil) inside [x0,x1)x[y0,y1).
+void applyFill(const RasterDraw::Fill& fill, DepthStencilSurface* depth, int x0, int y0, int x1,
+               int y1);
 
 // Bins the draw's primitives and shades all tiles on the pool.
 void rasterize(RasterDraw& draw, ThreadPool& pool);

@@ -24,9 +24,10 @@ class Runner {
   }
 
   SceneOutput run() {
-    SceneOutput out;
+    SceneOutput& out = out_;
     // A new target holds 0x00000000 until the first clear.
     out.target = Texture::create2D(script_.targetFormat, script_.width, script_.height, 1);
+    out.targets[0] = out.target;
     out.depthStencil = std::make_shared<DepthStencilSurface>(script_.width, script_.height);
     device_.setRenderTarget(out.target);
     device_.setDepthStencilSurface(out.depthStencil);
@@ -46,7 +47,7 @@ class Runner {
         throw Error(where(), c.name + ": " + msg);
       }
     }
-    return out;
+    return std::move(out);
   }
 
  private:
@@ -185,12 +186,23 @@ class Runner {
   }
   void apply(const SetViewport& v) { device_.setViewport(v.viewport); }
   void apply(const SetScissor& s) { device_.setScissorRect(s.rect); }
+  void apply(const SetRenderTarget& r) {
+    if (r.none) {
+      device_.setRenderTarget(r.index, nullptr);
+      return;
+    }
+    // Like the first target, a new one holds 0x00000000 until a clear.
+    TexturePtr t = Texture::create2D(r.format, r.width, r.height, 1);
+    device_.setRenderTarget(r.index, t);
+    out_.targets[size_t(r.index)] = std::move(t);
+  }
 
   const SceneScript& script_;
   Device& device_;
   std::filesystem::path base_;
   const Command* current_ = nullptr;
   std::map<std::string, TexturePtr> textures_;
+  SceneOutput out_;
 };
 
 }  // namespace

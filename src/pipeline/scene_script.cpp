@@ -3,6 +3,7 @@
 #include "refx/core/text.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -176,10 +178,19 @@ class Parser {
       errIn("v", pendingLine_, 0, "vertices are never drawn (add a draw command)");
     }
     for (const Expectation& e : script_.expectations) {
-      if (e.x >= script_.width || e.y >= script_.height)
+      int w = script_.width, h = script_.height;
+      if (e.target > 0) {
+        const auto& size = targetSizes_[size_t(e.target)];
+        if (!size)
+          throw Error(SourceLocation{script_.file, e.line, 0},
+                      fmt::format("expect@{}: no `rendertarget {} W H FORMAT` command creates "
+                                  "render target {}", e.target, e.target, e.target));
+        w = size->first, h = size->second;
+      }
+      if (e.x >= w || e.y >= h)
         throw Error(SourceLocation{script_.file, e.line, 0},
                     fmt::format("expect: pixel {},{} is outside the {}x{} render target", e.x,
-                                e.y, script_.width, script_.height));
+                                e.y, w, h));
     }
     return std::move(script_);
   }
@@ -253,17 +264,25 @@ class Parser {
     script_.commands.push_back(Command{line_, cmd_, std::move(action)});
   }
 
-  // ---- comments: `# expect X Y r g b a [tolerance]`
+  // ---- comments: `# expect X Y r g b a [tolerance]`, `# expect@N ...` for target N
   void comment(std::string_view text, int col) {
     auto t = tokenize(text);
-    if (t.empty() || t[0].text != "expect") return;
+    if (t.empty() || !(t[0].text == "expect" || t[0].text.starts_with("expect@"))) return;
     for (Token& k : t) k.col += col - 1;
-    if (t.size() != 7 && t.size() != 8)
-      errIn("expect", line_, t[0].col,
-            fmt::format("expected `# expect X Y r g b a [tolerance]`, got {} values",
-                                t.size() - 1));
     Expectation e;
     e.line = line_;
+    if (t[0].text != "expect") {
+      const auto n = toInt(t[0].text.substr(7));
+      if (!n || *n < 1 || *n > 3)
+        errIn("expect", line_, t[0].col,
+              fmt::format("expected expect@1, expect@2 or expect@3 (a render target), got '{}'",
+                          t[0].text));
+      e.target = int(*n);
+    }
+    if (t.size() != 7 && t.size() != 8)
+      errIn("expect", line_, t[0].col,
+            fmt::format("expected `# {} X Y r g b a [tolerance]`, got {} values", t[0].text,
+                                t.size() - 1));
     auto val = [&](size_t i, std::string_view what, int max) {
       auto v = toInt(t[i].text);
       if (!v || *v < 0 || *v > max)
@@ -292,6 +311,7 @@ class Parser {
         {"draw", &Parser::draw},         {"transform", &Parser::transform},
         {"material", &Parser::material}, {"light", &Parser::light},
         {"viewport", &Parser::viewport}, {"scissor", &Parser::scissor},
+        {"rendertarget", &Parser::renderTarget},
     };
     for (const CommandEntry& c : kCommands) {
       if (c.name == name) {
@@ -302,25 +322,47 @@ class Parser {
     throw Error(SourceLocation{script_.file, line_, tok_[0].col},
                 fmt::format("unknown command '{}' (expected size, clear, rs, tss, samp, "
                             "texture, settex, vs, ps, vsconst, psconst, fvf, v, i, draw, "
-                            "transform, material, light, viewport or scissor)",
+                            "transform, material, light, viewport, scissor or rendertarget)",
                             tok_[0].text));
   }
 
-  // ---- size W H [A8R8G8B8|X8R8G8B8]
+  // A render target format: A8R8G8B8, X8R8G8B8 or A32B32G32R32F.
+  Format targetFormat(size_t i) const {
+    auto f = parseFormat(arg(i));
+    if (!f || (*f != Format::A8R8G8B8 && *f != Format::X8R8G8B8 && *f != Format::A32B32G32R32F))
+      errAt(i, fmt::format("render target format must be A8R8G8B8, X8R8G8B8 or A32B32G32R32F, "
+                           "got '{}'", arg(i)));
+    return *f;
+  }
+
+  // ---- size W H [A8R8G8B8|X8R8G8B8|A32B32G32R32F]
   void size() {
-    need(2, 3, "W H [A8R8G8B8|X8R8G8B8]");
+    need(2, 3, "W H [A8R8G8B8|X8R8G8B8|A32B32G32R32F]");
     if (!first_ || sizeSeen_)
       err(tok_[0].col, "must be the first command (it creates the render target)");
     sizeSeen_ = true;
     script_.width = integer(1, "width", 1, kMaxTargetSize);
     script_.height = integer(2, "height", 1, kMaxTargetSize);
-    if (argc() == 3) {
-      auto f = parseFormat(arg(3));
-      if (!f || (*f != Format::A8R8G8B8 && *f != Format::X8R8G8B8))
-        errAt(3, fmt::format("render target format must be A8R8G8B8 or X8R8G8B8, got '{}'",
-                             arg(3)));
-      script_.targetFormat = *f;
+    if (argc() == 3) script_.targetFormat = targetFormat(3);
+  }
+
+  // ---- rendertarget N W H FORMAT | rendertarget N none
+  void renderTarget() {
+    if (argc() != 2) need(4, 4, "N W H FORMAT` or `rendertarget N none");
+    SetRenderTarget r;
+    r.index = integer(1, "the render target index (0 is `size`)", 1, 3);
+    if (argc() == 2) {
+      if (lower(arg(2)) != "none")
+        errAt(2, fmt::format("expected `none` or `W H FORMAT` after the index, got '{}'", arg(2)));
+      r.none = true;
+      add(r);
+      return;
     }
+    r.width = integer(2, "width", 1, kMaxTargetSize);
+    r.height = integer(3, "height", 1, kMaxTargetSize);
+    r.format = targetFormat(4);
+    targetSizes_[size_t(r.index)] = std::pair{r.width, r.height};
+    add(r);
   }
 
   // ---- clear COLOR [Z [STENCIL]]
@@ -897,6 +939,7 @@ class Parser {
   int line_ = 0;
   bool first_ = true, sizeSeen_ = false;
   std::set<std::string> textures_;
+  std::array<std::optional<std::pair<int, int>>, 4> targetSizes_;  // rendertarget N W H
   FvfLayout fvf_;
   std::vector<uint8_t> vertices_;
   uint32_t vertexCount_ = 0;
@@ -928,16 +971,25 @@ void readTargetPixel(const Texture& target, int x, int y, int rgba[4]) {
   rgba[3] = unorm8(c.a);
 }
 
-std::vector<std::string> checkSceneExpectations(const SceneScript& script, const Texture& target) {
+std::vector<std::string> checkSceneExpectations(const SceneScript& script, const SceneOutput& output) {
   std::vector<std::string> out;
   for (const Expectation& e : script.expectations) {
+    const std::string what =
+        e.target ? fmt::format("target {} {},{}", e.target, e.x, e.y) : fmt::format("{},{}", e.x, e.y);
+    const Texture* target = output.targets[size_t(e.target)].get();
+    if (e.target == 0 && output.target) target = output.target.get();
+    if (!target) {
+      out.push_back(fmt::format("{}:{}: expected {}, but render target {} was never created",
+                                script.file, e.line, what, e.target));
+      continue;
+    }
     int got[4];
-    readTargetPixel(target, e.x, e.y, got);
+    readTargetPixel(*target, e.x, e.y, got);
     bool ok = true;
     for (int c = 0; c < 4; ++c) ok = ok && std::abs(got[c] - e.rgba[c]) <= e.tolerance;
     if (!ok)
-      out.push_back(fmt::format("{}:{}: expected {},{} = {} {} {} {}, got {} {} {} {}",
-                                script.file, e.line, e.x, e.y, e.rgba[0], e.rgba[1], e.rgba[2],
+      out.push_back(fmt::format("{}:{}: expected {} = {} {} {} {}, got {} {} {} {}",
+                                script.file, e.line, what, e.rgba[0], e.rgba[1], e.rgba[2],
                                 e.rgba[3], got[0], got[1], got[2], got[3]));
   }
   return out;

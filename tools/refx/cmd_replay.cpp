@@ -27,6 +27,7 @@ struct ReplayOptions {
   int threads = 0;
   bool check = false;
   std::string precision = "exact";
+  int target = 0;  // render target written by -o and read by --print
 };
 
 struct Pixel {
@@ -75,15 +76,21 @@ int replay(const ReplayOptions& o) {
     options.precision = o.precision == "hardware" ? Precision::Hardware : Precision::Exact;
     Device device(caps, options);
     SceneOutput out = runSceneScript(script, device);
-
-    if (!o.output.empty()) saveImage(*out.target, o.output, ext == ".pam" || (o.rgba && ext == ".png"));
+    const Texture* image = out.targets[size_t(o.target)].get();
+    if (!image)
+      return usageError(fmt::format("--target {}: the scene creates no render target {} (expected "
+                                    "`rendertarget {} W H FORMAT`)", o.target, o.target, o.target));
+    if (!o.output.empty()) saveImage(*image, o.output, ext == ".pam" || (o.rgba && ext == ".png"));
     for (const Pixel& p : prints) {
+      if (p.x >= image->width() || p.y >= image->height())
+        return usageError(fmt::format("--print {},{}: outside the {}x{} render target {}", p.x, p.y,
+                                      image->width(), image->height(), o.target));
       int c[4];
-      readTargetPixel(*out.target, p.x, p.y, c);
+      readTargetPixel(*image, p.x, p.y, c);
       std::printf("%d,%d: %d %d %d %d\n", p.x, p.y, c[0], c[1], c[2], c[3]);
     }
     if (o.check) {
-      std::vector<std::string> mismatches = checkSceneExpectations(script, *out.target);
+      std::vector<std::string> mismatches = checkSceneExpectations(script, out);
       for (const std::string& m : mismatches) std::printf("%s\n", m.c_str());
       std::fflush(stdout);
       if (!mismatches.empty()) return 1;
@@ -114,6 +121,10 @@ Action addReplayCommand(CLI::App& app) {
                   "Shader precision: exact (fp32, version ranges) or hardware (ps_1_x fixed "
                   "point of the era's parts); default exact")
       ->check(CLI::IsMember({"exact", "hardware"}));
+  cmd->add_option("--target", o->target,
+                  "Render target that -o writes and --print reads: 0 (default) or the N of a "
+                  "`rendertarget N W H FORMAT` command")
+      ->check(CLI::Range(0, 3));
   cmd->add_flag("--check", o->check,
                 "Compare the `# expect` pixels of the script; exit 1 on any mismatch");
   return [o] { return replay(*o); };

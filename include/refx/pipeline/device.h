@@ -1,6 +1,7 @@
 // refx::Device: a Direct3D 9 device rendering in software. Method names follow
 // IDirect3DDevice9 so D3D9 code maps 1:1.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -62,14 +63,20 @@ class Device {
   void setThreads(int threads);
   void setPrecision(Precision precision) { options_.precision = precision; }
 
-  // Render target: level 0 of a 2D texture (A8R8G8B8 or X8R8G8B8). Setting it resets
-  // the viewport to the whole target, as SetRenderTarget does.
-  void setRenderTarget(TexturePtr target);
+  // Render target `index` (0-3, below the caps' NumSimultaneousRTs): level 0 of a 2D
+  // A8R8G8B8, X8R8G8B8 or A32B32G32R32F texture; ps_2_0 and later write oCn to target n.
+  // Target 0 cannot be null, the others are unbound with null. All bound targets have
+  // the same size, and the same bit depth unless the caps have
+  // D3DPMISCCAPS_MRTINDEPENDENTBITDEPTHS. Setting target 0 resets the viewport and the
+  // scissor rectangle to the whole target, as SetRenderTarget does. Throws refx::Error.
+  void setRenderTarget(int index, TexturePtr target);
+  void setRenderTarget(TexturePtr target) { setRenderTarget(0, std::move(target)); }
   // The accessors write a pending (deferred) Clear first.
-  const TexturePtr& renderTarget() const;
+  const TexturePtr& renderTarget(int index = 0) const;
   void setDepthStencilSurface(DepthStencilPtr ds);
   const DepthStencilPtr& depthStencilSurface() const;
 
+  // CLEAR_TARGET fills every bound render target (A32B32G32R32F ones with c/255).
   void clear(uint32_t flags, D3DColor color, float z, uint32_t stencil);
 
   void setRenderState(d3d::RenderState s, uint32_t value);
@@ -154,7 +161,7 @@ class Device {
   CapsProfile caps_;
   DeviceOptions options_;
   DeviceState state_;
-  TexturePtr target_;
+  std::array<TexturePtr, 4> targets_;  // SetRenderTarget 0-3
   DepthStencilPtr depth_;
   DrawStats stats_;
   DiagnosticSink diagnostics_;

@@ -2,6 +2,7 @@
 // against one Device (reference/scene-script.md). Parsing resolves every name and
 // value, so a parsed script only fails at run time for I/O, device limits and shaders.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -108,10 +109,18 @@ struct SetViewport {
 struct SetScissor {
   Rect rect;
 };
+// `rendertarget N W H FORMAT` creates a texture (all texels 0) and binds it as render
+// target N (1-3); `rendertarget N none` unbinds target N.
+struct SetRenderTarget {
+  int index = 1;
+  bool none = false;
+  int width = 0, height = 0;
+  Format format = Format::A8R8G8B8;
+};
 
 using Action = std::variant<Clear, SetRenderState, SetStageState, SetSamplerState, TextureDef,
                             SetTexture, Shader, SetConstants, Draw, SetTransform, SetMaterial,
-                            SetLight, SetViewport, SetScissor>;
+                            SetLight, SetViewport, SetScissor, SetRenderTarget>;
 
 struct Command {
   int line = 0;
@@ -119,9 +128,11 @@ struct Command {
   Action action;
 };
 
-// `# expect X Y r g b a [tolerance]`: one pixel of the final image (0-255 values).
+// `# expect X Y r g b a [tolerance]`: one pixel of the final image (0-255 values);
+// `# expect@N ...` the same for the last texture `rendertarget N` created.
 struct Expectation {
   int line = 0;
+  int target = 0;
   int x = 0, y = 0;
   int rgba[4] = {0, 0, 0, 0};
   int tolerance = 2;
@@ -149,6 +160,9 @@ TexturePtr createSceneTexture(const scene::TextureDef& def, const Texture* image
 struct SceneOutput {
   TexturePtr target;
   std::shared_ptr<DepthStencilSurface> depthStencil;
+  // Render target N as the expectations see it: [0] = target, [N] the last texture a
+  // `rendertarget N W H FORMAT` command created (bound or not at the end), or null.
+  std::array<TexturePtr, 4> targets;
 };
 // Creates the render target (all texels 0) and D24S8 surface, attaches them to `device`
 // and runs every command in order.
@@ -157,7 +171,8 @@ SceneOutput runSceneScript(const SceneScript& script, Device& device);
 // Reads pixel (x, y) of a render target as 0-255 r, g, b, a.
 void readTargetPixel(const Texture& target, int x, int y, int rgba[4]);
 // Compares every `# expect` pixel; returns one line per mismatch:
-// "file:LINE: expected X,Y = r g b a, got r g b a".
-std::vector<std::string> checkSceneExpectations(const SceneScript& script, const Texture& target);
+// "file:LINE: expected X,Y = r g b a, got r g b a" ("expected target N X,Y ..." for
+// `expect@N`).
+std::vector<std::string> checkSceneExpectations(const SceneScript& script, const SceneOutput& output);
 
 }  // namespace refx
