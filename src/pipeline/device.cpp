@@ -5,6 +5,8 @@
 #include <cstring>
 #include <optional>
 
+#include "clip.h"
+#include "depth.h"
 #include "ff_pixel.h"
 #include "ff_vertex.h"
 #include "raster.h"
@@ -156,6 +158,18 @@ void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
 void Device::setRenderState(RenderState s, uint32_t value) {
   if (s >= kRenderStateCount) fail("render state {} out of range", uint32_t(s));
   state_.renderStates[s] = value;
+}
+
+void Device::setClipPlane(int index, const float plane[4]) {
+  if (index < 0 || index >= kMaxUserClipPlanes)
+    fail("SetClipPlane: plane {} out of range (0-{})", index, kMaxUserClipPlanes - 1);
+  state_.clipPlanes[size_t(index)] = Vec4(plane[0], plane[1], plane[2], plane[3]);
+}
+
+Vec4 Device::getClipPlane(int index) const {
+  if (index < 0 || index >= kMaxUserClipPlanes)
+    fail("GetClipPlane: plane {} out of range (0-{})", index, kMaxUserClipPlanes - 1);
+  return state_.clipPlanes[size_t(index)];
 }
 
 void Device::setTextureStageState(int stage, TextureStageState s, uint32_t value) {
@@ -459,45 +473,6 @@ std::array<uint8_t, 32> inputComponentsRead(const exec::Program& p, const Device
   return used;
 }
 
-// Homogeneous clipping (Sutherland-Hodgman) against near z >= 0, far z <= w and a
-// guard band |x|,|y| <= g*w that keeps screen coordinates inside the fixed-point range.
-struct ClipVertex {
-  Vec4 v[kVaryingCount];
-};
-
-float planeDistance(const Vec4& p, int plane, float g) {
-  switch (plane) {
-    case 0: return p.z;            // near
-    case 1: return p.w - p.z;      // far
-    case 2: return g * p.w - p.x;  // right
-    case 3: return g * p.w + p.x;  // left
-    case 4: return g * p.w - p.y;  // top
-    default: return g * p.w + p.y; // bottom
-  }
-}
-
-void clipPolygon(std::vector<ClipVertex>& poly, float g) {
-  std::vector<ClipVertex> out;
-  for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
-    out.clear();
-    const size_t n = poly.size();
-    for (size_t i = 0; i < n; ++i) {
-      const ClipVertex& a = poly[i];
-      const ClipVertex& b = poly[(i + 1) % n];
-      const float da = planeDistance(a.v[0], plane, g), db = planeDistance(b.v[0], plane, g);
-      if (da >= 0) out.push_back(a);
-      if ((da >= 0) != (db >= 0)) {
-        const float t = da / (da - db);
-        ClipVertex c;
-        for (int k = 0; k < kVaryingCount; ++k)
-          for (int j = 0; j < 4; ++j) c.v[k][j] = a.v[k][j] + (b.v[k][j] - a.v[k][j]) * t;
-        out.push_back(c);
-      }
-    }
-    poly.swap(out);
-  }
-}
-
 }  // namespace
 
 // Primitive setup from screen-space vertices into the raster draw.
@@ -577,6 +552,10 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
   p.planeOffset = uint32_t(d.planes.size());
   addPlane(d.planes, sv[0].invW, sv[1].invW, sv[2].invW, x1, y1, x2, y2, det);
   addPlane(d.planes, sv[0].z, sv[1].z, sv[2].z, x1, y1, x2, y2, det);
+  if (d.depthBias != 0 || d.slopeScaleDepthBias != 0) {
+    float* z = &d.planes[d.planes.size() - 3];  // base, dz/dx, dz/dy
+    z[0] += depthOffset(d.depthBias, d.slopeScaleDepthBias, z[1], z[2]);
+  }
   for (const InterpolatedInput& in : d.inputs) {
     if (in.flat) {
       d.planes.push_back(sv[0].varyings[in.varying][in.component]);
@@ -637,11 +616,17 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
   d.prims.push_back(p);
 }
 
-void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bounds) {
+// A point is a screen-aligned square of side `size` centred on the vertex; it covers
+// the pixels whose centres lie in [x - size/2, x + size/2) x [y - size/2, y + size/2)
+// (the top-left rule of two triangles covering the square). With `sprite`
+// (D3DRS_POINTSPRITEENABLE) texture coordinates u, v of every set run across the
+// square, (0,0) at its top-left corner to (1,1) at its bottom-right; otherwise all
+// inputs keep the vertex's values.
+void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bounds, bool sprite) {
   Primitive p{};
   p.kind = PrimKind::Point;
-  const float h = std::max(size, 1.0f) * 0.5f;
-  // Pixels whose centres lie in [x - h, x + h).
+  size = std::max(size, 1.0f);
+  const float h = size * 0.5f;
   p.minX = std::max(bounds.left, int(std::ceil(a.x - h)));
   p.maxX = std::min(bounds.right - 1, int(std::ceil(a.x + h)) - 1);
   p.minY = std::max(bounds.top, int(std::ceil(a.y - h)));
@@ -650,15 +635,24 @@ void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bou
   p.originX = a.x;
   p.originY = a.y;
   p.planeOffset = uint32_t(d.planes.size());
-  auto constant = [&](float v) {
+  auto plane = [&](float v, float dx, float dy) {
     d.planes.push_back(v);
-    d.planes.push_back(0);
-    d.planes.push_back(0);
+    d.planes.push_back(dx);
+    d.planes.push_back(dy);
   };
-  constant(a.invW);
-  constant(a.z);
-  for (const InterpolatedInput& in : d.inputs)
-    constant(a.varyings[in.varying][in.component] * (in.flat ? 1.0f : a.invW));
+  plane(a.invW, 0, 0);
+  plane(a.z, 0, 0);
+  for (const InterpolatedInput& in : d.inputs) {
+    const float scale = in.flat ? 1.0f : a.invW;  // non-flat planes hold value/w
+    const bool texCoord = in.varying >= kVertexOutTex0 && in.varying < kVertexOutTex0 + 8;
+    if (sprite && texCoord && in.component < 2) {
+      // At the centre 0.5, one unit across the side.
+      const float step = scale / size;
+      plane(0.5f * scale, in.component == 0 ? step : 0.0f, in.component == 1 ? step : 0.0f);
+      continue;
+    }
+    plane(a.varyings[in.varying][in.component] * scale, 0, 0);
+  }
   d.prims.push_back(p);
 }
 
@@ -872,6 +866,10 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.depthTest = depth_ && st.rs(RS_ZENABLE) != ZB_FALSE;
   d.depthWrite = d.depthTest && st.rs(RS_ZWRITEENABLE) != 0;
   d.depthFunc = st.rs(RS_ZFUNC);
+  d.wBuffer = st.rs(RS_ZENABLE) == ZB_USEW;
+  d.invFarW = 1.0f / projectionFarW(st.projection);
+  d.depthBias = st.rsFloat(RS_DEPTHBIAS);
+  d.slopeScaleDepthBias = st.rsFloat(RS_SLOPESCALEDEPTHBIAS);
   d.stencil = depth_ && st.rs(RS_STENCILENABLE) != 0;
   d.alphaTest = st.rs(RS_ALPHATESTENABLE) != 0;
   d.alphaFunc = st.rs(RS_ALPHAFUNC);
@@ -899,8 +897,20 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   const float gb = std::max(1.0f, 16384.0f / float(std::max({vp.width, vp.height, 1})));
   const uint32_t cull = st.rs(RS_CULLMODE);
   const uint32_t fill = st.rs(RS_FILLMODE);
-  const float pointSize = std::clamp(st.rsFloat(RS_POINTSIZE), st.rsFloat(RS_POINTSIZE_MIN),
-                                     std::max(st.rsFloat(RS_POINTSIZE_MIN), st.rsFloat(RS_POINTSIZE_MAX)));
+  // Point size: D3DRS_POINTSIZE clamped to POINTSIZE_MIN/MAX, or the vertex's own
+  // size (fixed-function T&L computes and clamps it, with POINTSCALEENABLE; a vertex
+  // shader's oPts is clamped here), finally limited to the caps' MaxPointSize.
+  const float sizeMin = st.rsFloat(RS_POINTSIZE_MIN);
+  const float sizeMax = std::max(sizeMin, st.rsFloat(RS_POINTSIZE_MAX));
+  const float deviceMaxPointSize = std::max(caps_.maxPointSize, 1.0f);
+  const float renderStatePointSize = std::clamp(st.rsFloat(RS_POINTSIZE), sizeMin, sizeMax);
+  const bool vertexPointSize = !vs || vcfg.hasPSize;
+  auto pointSizeOf = [&](const Vec4* out) {
+    const float size = vertexPointSize ? std::clamp(out[kVertexOutPSize].x, sizeMin, sizeMax)
+                                       : renderStatePointSize;
+    return std::min(size, deviceMaxPointSize);
+  };
+  const bool pointSprite = st.rs(RS_POINTSPRITEENABLE) != 0;
 
   auto toScreen = [&](const Vec4* out, SetupVertex& s) {
     const Vec4& p = out[0];
@@ -920,9 +930,12 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     s.varyings = out;
   };
   auto vertexOut = [&](uint32_t i) -> const Vec4* { return verts[i - lo].out; };
-  auto outside = [&](const Vec4& p) {  // needs clipping against near/far/guard band
-    return p.z < 0 || p.z > p.w || std::fabs(p.x) > gb * p.w || std::fabs(p.y) > gb * p.w;
-  };
+  // Near/far, the guard band and the user clip planes. Pretransformed vertices are
+  // not clipped (they have no clip space; D3DPMISCCAPS_CLIPTLVERTS concerns the
+  // viewport, which the rasterizer's bounds already enforce).
+  ClipPlanes clip;
+  clip.guardBand = gb;
+  if (!vcfg.pretransformed) userClipPlanes(st, vs != nullptr, clip);
 
   std::vector<ClipVertex> poly;
   auto triangle = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
@@ -945,16 +958,18 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
         setupLine(d, sv[1], sv[2], bounds, flat);
         setupLine(d, sv[2], sv[0], bounds, flat);
       } else {
-        for (auto& v : sv) setupPoint(d, v, pointSize, bounds);
+        const Vec4* outs[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k) setupPoint(d, sv[k], pointSizeOf(outs[k]), bounds, pointSprite);
       }
     };
-    if (vcfg.pretransformed || (!outside(o[0][0]) && !outside(o[1][0]) && !outside(o[2][0]))) {
+    if (vcfg.pretransformed ||
+        (!clip.outside(o[0][0]) && !clip.outside(o[1][0]) && !clip.outside(o[2][0]))) {
       emit(o[0], o[1], o[2]);
       return;
     }
     poly.assign(3, {});
     for (int k = 0; k < 3; ++k) std::memcpy(poly[k].v, o[k], sizeof(poly[k].v));
-    clipPolygon(poly, gb);
+    clipPolygon(poly, clip);
     for (size_t k = 2; k < poly.size(); ++k) {
       // Clipped vertices keep the provoking (first) vertex's flat colors.
       emit(poly[0].v, poly[k - 1].v, poly[k].v);
@@ -963,40 +978,25 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   auto line = [&](uint32_t i0, uint32_t i1) {
     const Vec4* a = vertexOut(i0);
     const Vec4* b = vertexOut(i1);
-    if (!vcfg.pretransformed && (outside(a[0]) || outside(b[0]))) {
-      // Clip the segment parametrically against the same planes.
-      float t0 = 0, t1 = 1;
-      for (int plane = 0; plane < 6; ++plane) {
-        const float da = planeDistance(a[0], plane, gb), db = planeDistance(b[0], plane, gb);
-        if (da < 0 && db < 0) return;
-        if (da < 0) t0 = std::max(t0, da / (da - db));
-        if (db < 0) t1 = std::min(t1, da / (da - db));
-      }
-      if (t0 >= t1) return;
+    SetupVertex sa, sb;
+    if (!vcfg.pretransformed && (clip.outside(a[0]) || clip.outside(b[0]))) {
       ClipVertex ca, cb;
-      for (int k = 0; k < kVaryingCount; ++k)
-        for (int j = 0; j < 4; ++j) {
-          ca.v[k][j] = a[k][j] + (b[k][j] - a[k][j]) * t0;
-          cb.v[k][j] = a[k][j] + (b[k][j] - a[k][j]) * t1;
-        }
-      SetupVertex sa, sb;
+      if (!clipSegment(a, b, clip, ca, cb)) return;
       toScreen(ca.v, sa);
       toScreen(cb.v, sb);
-      setupLine(d, sa, sb, bounds, flat);
-      return;
+    } else {
+      toScreen(a, sa);
+      toScreen(b, sb);
     }
-    SetupVertex sa, sb;
-    toScreen(a, sa);
-    toScreen(b, sb);
     setupLine(d, sa, sb, bounds, flat);
   };
   auto point = [&](uint32_t i) {
     const Vec4* a = vertexOut(i);
-    if (!vcfg.pretransformed && outside(a[0])) return;
+    // A point whose centre is outside any plane is culled whole.
+    if (!vcfg.pretransformed && clip.outside(a[0])) return;
     SetupVertex s;
     toScreen(a, s);
-    const float size = vcfg.hasPSize ? a[kVertexOutPSize].x : pointSize;
-    setupPoint(d, s, size, bounds);
+    setupPoint(d, s, pointSizeOf(a), bounds, pointSprite);
   };
 
   switch (type) {

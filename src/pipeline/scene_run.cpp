@@ -185,6 +185,10 @@ class Runner {
   }
   void apply(const SetViewport& v) { device_.setViewport(v.viewport); }
   void apply(const SetScissor& s) { device_.setScissorRect(s.rect); }
+  void apply(const SetClipPlane& c) {
+    const float plane[4] = {c.plane.x, c.plane.y, c.plane.z, c.plane.w};
+    device_.setClipPlane(c.index, plane);
+  }
 
   const SceneScript& script_;
   Device& device_;

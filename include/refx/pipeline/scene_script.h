@@ -108,10 +108,14 @@ struct SetViewport {
 struct SetScissor {
   Rect rect;
 };
+struct SetClipPlane {
+  int index = 0;
+  Vec4 plane;  // A, B, C, D
+};
 
 using Action = std::variant<Clear, SetRenderState, SetStageState, SetSamplerState, TextureDef,
                             SetTexture, Shader, SetConstants, Draw, SetTransform, SetMaterial,
-                            SetLight, SetViewport, SetScissor>;
+                            SetLight, SetViewport, SetScissor, SetClipPlane>;
 
 struct Command {
   int line = 0;
