@@ -1,6 +1,9 @@
 #include "clip.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "ff_vertex.h"
 
 namespace refx::pipeline {
 
@@ -25,9 +28,8 @@ bool ClipPlanes::insideUser(const Vec4& p) const {
   return true;
 }
 
-bool ClipPlanes::outside(const Vec4& p) const {
-  return p.z < 0 || p.z > p.w || std::fabs(p.x) > guardBand * p.w ||
-         std::fabs(p.y) > guardBand * p.w || !insideUser(p);
+bool ClipPlanes::outsideVolume(const Vec4& p) const {
+  return p.z < 0 || p.z > p.w || std::fabs(p.x) > guardBand * p.w || std::fabs(p.y) > guardBand * p.w;
 }
 
 void userClipPlanes(const DeviceState& st, bool vertexShader, ClipPlanes& planes) {
@@ -90,6 +92,23 @@ bool clipSegment(const Vec4* a, const Vec4* b, const ClipPlanes& planes, ClipVer
   ca = lerp(va, vb, t0);
   cb = lerp(va, vb, t1);
   return true;
+}
+
+void pointCorners(const Vec4* out, float halfX, float halfY, bool sprite, ClipVertex (&corners)[4]) {
+  // Clip-space y points up, screen y down: the top corners have the larger y.
+  constexpr float kSide[4][2] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
+  constexpr float kUV[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int k = 0; k < 4; ++k) {
+    ClipVertex& c = corners[k];
+    std::copy(out, out + kVaryingCount, c.v);
+    c.v[0].x += kSide[k][0] * halfX;
+    c.v[0].y += kSide[k][1] * halfY;
+    if (!sprite) continue;
+    for (int t = 0; t < 8; ++t) {
+      c.v[kVertexOutTex0 + t].x = kUV[k][0];
+      c.v[kVertexOutTex0 + t].y = kUV[k][1];
+    }
+  }
 }
 
 }  // namespace refx::pipeline

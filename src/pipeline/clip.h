@@ -24,8 +24,10 @@ struct ClipPlanes {
   float distance(const Vec4& p, int plane) const;
   // Whether p is on the inside of every user plane.
   bool insideUser(const Vec4& p) const;
+  // Whether p is outside near/far or the guard band (user planes not considered).
+  bool outsideVolume(const Vec4& p) const;
   // Whether p needs clipping against any plane.
-  bool outside(const Vec4& p) const;
+  bool outside(const Vec4& p) const { return outsideVolume(p) || !insideUser(p); }
 };
 
 // The enabled user planes of `st` in clip space. D3D9 gives them in world space for
@@ -40,5 +42,11 @@ void clipPolygon(std::vector<ClipVertex>& poly, const ClipPlanes& planes);
 // Parametric clip of the segment a-b; false when nothing is left.
 bool clipSegment(const Vec4* a, const Vec4* b, const ClipPlanes& planes, ClipVertex& ca,
                  ClipVertex& cb);
+
+// The clip-space corners of a point's square, in screen order top-left, top-right,
+// bottom-right, bottom-left: the vertex `out` moved by halfX, halfY in clip units (half
+// the side in pixels times 2w over the viewport's width or height). With `sprite` the
+// u, v of every texture coordinate set are (0,0) at the top-left corner to (1,1).
+void pointCorners(const Vec4* out, float halfX, float halfY, bool sprite, ClipVertex (&corners)[4]);
 
 }  // namespace refx::pipeline

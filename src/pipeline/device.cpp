@@ -992,11 +992,34 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   };
   auto point = [&](uint32_t i) {
     const Vec4* a = vertexOut(i);
-    // A point whose centre is outside any plane is culled whole.
-    if (!vcfg.pretransformed && clip.outside(a[0])) return;
+    // A point whose centre is outside the view volume is culled whole.
+    if (!vcfg.pretransformed && clip.outsideVolume(a[0])) return;
+    const float size = pointSizeOf(a);
+    if (!vcfg.pretransformed && clip.userCount) {
+      // User planes clip the point's square like a polygon
+      // (D3DPMISCCAPS_CLIPPLANESCALEDPOINTS): the corners, then two triangles per
+      // clipped piece, with the same coverage rule and constant (or sprite) values.
+      const float side = std::max(size, 1.0f) * a[0].w;  // half side * 2w
+      ClipVertex corners[4];
+      pointCorners(a, side / float(vp.width), side / float(vp.height), pointSprite, corners);
+      bool inside = true;
+      for (const ClipVertex& c : corners) inside &= clip.insideUser(c.v[0]);
+      if (!inside) {
+        poly.assign(corners, corners + 4);
+        clipPolygon(poly, clip);
+        for (size_t k = 2; k < poly.size(); ++k) {
+          SetupVertex sv[3];
+          toScreen(poly[0].v, sv[0]);
+          toScreen(poly[k - 1].v, sv[1]);
+          toScreen(poly[k].v, sv[2]);
+          setupTriangle(d, sv, CULL_NONE, bounds, flat);
+        }
+        return;
+      }
+    }
     SetupVertex s;
     toScreen(a, s);
-    setupPoint(d, s, pointSizeOf(a), bounds, pointSprite);
+    setupPoint(d, s, size, bounds, pointSprite);
   };
 
   switch (type) {
