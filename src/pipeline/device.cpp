@@ -953,6 +953,15 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
       const double area = double(sv[1].x - sv[0].x) * (sv[2].y - sv[0].y) -
                           double(sv[2].x - sv[0].x) * (sv[1].y - sv[0].y);
       if (area == 0 || (cull == CULL_CCW && area < 0) || (cull == CULL_CW && area > 0)) return;
+      if (d.depthBias != 0 || d.slopeScaleDepthBias != 0) {
+        // The triangle's depth offset applies to its edges and vertices as well.
+        const double x1 = sv[1].x - sv[0].x, y1 = sv[1].y - sv[0].y;
+        const double x2 = sv[2].x - sv[0].x, y2 = sv[2].y - sv[0].y;
+        const double z1 = sv[1].z - sv[0].z, z2 = sv[2].z - sv[0].z;
+        const float offset = depthOffset(d.depthBias, d.slopeScaleDepthBias,
+                                         float((z1 * y2 - z2 * y1) / area), float((z2 * x1 - z1 * x2) / area));
+        for (SetupVertex& v : sv) v.z += offset;
+      }
       if (fill == FILL_WIREFRAME) {
         setupLine(d, sv[0], sv[1], bounds, flat);
         setupLine(d, sv[1], sv[2], bounds, flat);
