@@ -623,14 +623,17 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
 // square, (0,0) at its top-left corner to (1,1) at its bottom-right; otherwise all
 // inputs keep the vertex's values.
 void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bounds, bool sprite) {
+  if (!std::isfinite(a.x) || !std::isfinite(a.y)) return;
   Primitive p{};
   p.kind = PrimKind::Point;
-  size = std::max(size, 1.0f);
+  size = size >= 1.0f ? size : 1.0f;  // NaN too
   const float h = size * 0.5f;
-  p.minX = std::max(bounds.left, int(std::ceil(a.x - h)));
-  p.maxX = std::min(bounds.right - 1, int(std::ceil(a.x + h)) - 1);
-  p.minY = std::max(bounds.top, int(std::ceil(a.y - h)));
-  p.maxY = std::min(bounds.bottom - 1, int(std::ceil(a.y + h)) - 1);
+  // Clamped as floats: far-away (guard band) or huge points stay in int range.
+  auto clampTo = [](float v, int lo, int hi) { return v <= float(lo) ? lo : v >= float(hi) ? hi : int(v); };
+  p.minX = clampTo(std::ceil(a.x - h), bounds.left, bounds.right);
+  p.maxX = clampTo(std::ceil(a.x + h) - 1, bounds.left - 1, bounds.right - 1);
+  p.minY = clampTo(std::ceil(a.y - h), bounds.top, bounds.bottom);
+  p.maxY = clampTo(std::ceil(a.y + h) - 1, bounds.top - 1, bounds.bottom - 1);
   if (p.minX > p.maxX || p.minY > p.maxY) return;
   p.originX = a.x;
   p.originY = a.y;
@@ -908,7 +911,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   auto pointSizeOf = [&](const Vec4* out) {
     const float size = vertexPointSize ? std::clamp(out[kVertexOutPSize].x, sizeMin, sizeMax)
                                        : renderStatePointSize;
-    return std::min(size, deviceMaxPointSize);
+    return size >= 1.0f ? std::min(size, deviceMaxPointSize) : 1.0f;  // NaN: 1
   };
   const bool pointSprite = st.rs(RS_POINTSPRITEENABLE) != 0;
 

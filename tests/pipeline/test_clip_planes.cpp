@@ -3,6 +3,8 @@
 // clipping helpers.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "device_helpers.h"
 #include "pipeline/clip.h"
 #include "pipeline/depth.h"
@@ -129,6 +131,34 @@ TEST(Points, MaxPointSizeOneDrawsOnePixelWhateverThePointSize) {
   EXPECT_EQ(pixel(*dev, 0, 5), 0xff000000u);
   EXPECT_EQ(pixel(*dev, 5, 5), 0xff000000u);
   EXPECT_EQ(pixel(*dev, 3, 7), 0xff000000u);
+}
+
+TEST(Points, NonFiniteSizesAndPositionsDoNotCrash) {
+  auto dev = makeDevice(8, 8, 0xff000000);
+  CapsProfile caps = dev->caps();
+  caps.maxPointSize = 256;
+  dev->setCaps(caps);
+  useDiffuseOnly(*dev);
+  struct SizedVertex {
+    float x, y, z, rhw, psize;
+    uint32_t diffuse;
+  };
+  dev->setFVF(FVF_XYZRHW | FVF_PSIZE | FVF_DIFFUSE);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const SizedVertex v[] = {
+      {3, 5, 0.5f, 1, nan, 0xff00ff00},    // NaN size: drawn as size 1
+      {1e30f, 2, 0.5f, 1, 4, 0xffff0000},  // far off the target: nothing
+      {nan, 2, 0.5f, 1, 4, 0xffff0000},    // NaN position: nothing
+      {6, 1, 0.5f, 1, inf, 0xffff0000},    // infinite size: POINTSIZE_MAX 64, the whole target
+  };
+  dev->drawPrimitiveUP(PT_POINTLIST, 3, v, sizeof(SizedVertex));
+  EXPECT_EQ(pixel(*dev, 3, 5), 0xff00ff00u);
+  EXPECT_EQ(pixel(*dev, 2, 5), 0xff000000u);
+  EXPECT_EQ(pixel(*dev, 7, 7), 0xff000000u);
+  dev->drawPrimitiveUP(PT_POINTLIST, 1, v + 3, sizeof(SizedVertex));
+  EXPECT_EQ(pixel(*dev, 0, 0), 0xffff0000u);
+  EXPECT_EQ(pixel(*dev, 7, 7), 0xffff0000u);
 }
 
 }  // namespace
