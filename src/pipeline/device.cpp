@@ -509,8 +509,9 @@ inline int64_t roundHalfAway(double x) {
   return std::fabs(x - t) >= 0.5 ? (x < 0 ? i - 1 : i + 1) : i;
 }
 
+// `biased`: D3DRS_DEPTHBIAS/SLOPESCALEDEPTHBIAS apply (not to the pieces of a point).
 void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, const Rect& bounds,
-                   bool flat) {
+                   bool flat, bool biased = true) {
   constexpr double one = double(1 << kSubPixelBits);
   int64_t X[3], Y[3];
   for (int i = 0; i < 3; ++i) {
@@ -552,7 +553,7 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
   p.planeOffset = uint32_t(d.planes.size());
   addPlane(d.planes, sv[0].invW, sv[1].invW, sv[2].invW, x1, y1, x2, y2, det);
   addPlane(d.planes, sv[0].z, sv[1].z, sv[2].z, x1, y1, x2, y2, det);
-  if (d.depthBias != 0 || d.slopeScaleDepthBias != 0) {
+  if (biased && (d.depthBias != 0 || d.slopeScaleDepthBias != 0)) {
     float* z = &d.planes[d.planes.size() - 3];  // base, dz/dx, dz/dy
     z[0] += depthOffset(d.depthBias, d.slopeScaleDepthBias, z[1], z[2]);
   }
@@ -1024,7 +1025,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
           toScreen(poly[0].v, sv[0]);
           toScreen(poly[k - 1].v, sv[1]);
           toScreen(poly[k].v, sv[2]);
-          setupTriangle(d, sv, CULL_NONE, bounds, flat);
+          setupTriangle(d, sv, CULL_NONE, bounds, flat, false);
         }
         return;
       }
