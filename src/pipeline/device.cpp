@@ -509,6 +509,12 @@ inline int64_t roundHalfAway(double x) {
   return std::fabs(x - t) >= 0.5 ? (x < 0 ? i - 1 : i + 1) : i;
 }
 
+// The value the depth buffer holds for a vertex: z, or w / w_far when w-buffering
+// (then the vertices' z is 0 and the z plane carries only the depth bias).
+double bufferDepth(const RasterDraw& d, const SetupVertex& v) {
+  return d.wBuffer ? double(d.invFarW) / double(v.invW) : double(v.z);
+}
+
 // `biased`: D3DRS_DEPTHBIAS/SLOPESCALEDEPTHBIAS apply (not to the pieces of a point).
 void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, const Rect& bounds,
                    bool flat, bool biased = true) {
@@ -555,7 +561,14 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
   addPlane(d.planes, sv[0].z, sv[1].z, sv[2].z, x1, y1, x2, y2, det);
   if (biased && (d.depthBias != 0 || d.slopeScaleDepthBias != 0)) {
     float* z = &d.planes[d.planes.size() - 3];  // base, dz/dx, dz/dy
-    z[0] += depthOffset(d.depthBias, d.slopeScaleDepthBias, z[1], z[2]);
+    float slopeX = z[1], slopeY = z[2];
+    if (d.wBuffer) {
+      // The slopes of the stored w / w_far across the vertices.
+      const double w0 = bufferDepth(d, sv[0]), w1 = bufferDepth(d, sv[1]) - w0, w2 = bufferDepth(d, sv[2]) - w0;
+      slopeX = float((w1 * y2 - w2 * y1) / det);
+      slopeY = float((w2 * x1 - w1 * x2) / det);
+    }
+    z[0] += depthOffset(d.depthBias, d.slopeScaleDepthBias, slopeX, slopeY);
   }
   for (const InterpolatedInput& in : d.inputs) {
     if (in.flat) {
@@ -922,13 +935,13 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
       // XYZRHW: already in screen space; rhw is 1/w for perspective interpolation.
       s.x = p.x;
       s.y = p.y;
-      s.z = p.z;
+      s.z = d.wBuffer ? 0.0f : p.z;  // w-buffering: z only carries the depth bias
       s.invW = p.w != 0 ? p.w : 1.0f;
     } else {
       const float iw = 1.0f / p.w;
       s.x = float(vp.x) + (1.0f + p.x * iw) * 0.5f * float(vp.width);
       s.y = float(vp.y) + (1.0f - p.y * iw) * 0.5f * float(vp.height);
-      s.z = vp.minZ + p.z * iw * (vp.maxZ - vp.minZ);
+      s.z = d.wBuffer ? 0.0f : vp.minZ + p.z * iw * (vp.maxZ - vp.minZ);
       s.invW = iw;
     }
     s.varyings = out;
@@ -961,7 +974,8 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
         // The triangle's depth offset applies to its edges and vertices as well.
         const double x1 = sv[1].x - sv[0].x, y1 = sv[1].y - sv[0].y;
         const double x2 = sv[2].x - sv[0].x, y2 = sv[2].y - sv[0].y;
-        const double z1 = sv[1].z - sv[0].z, z2 = sv[2].z - sv[0].z;
+        const double z0 = bufferDepth(d, sv[0]);
+        const double z1 = bufferDepth(d, sv[1]) - z0, z2 = bufferDepth(d, sv[2]) - z0;
         const float offset = depthOffset(d.depthBias, d.slopeScaleDepthBias,
                                          float((z1 * y2 - z2 * y1) / area), float((z2 * x1 - z1 * x2) / area));
         for (SetupVertex& v : sv) v.z += offset;

@@ -155,11 +155,10 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   evalPlane(pl, fx, fy, nullptr, w.invW);
   const v8f zero{}, one = zero + 1.0f;
   if (d.depthTest || d.usesPosition) {  // z is read by the depth test and vPos only
-    if (d.wBuffer) {
-      for (int h = 0; h < 2; ++h) store8(w.z + 8 * h, bcast(d.invFarW) / load8(w.invW + 8 * h));
-    } else {
-      evalPlane(pl + 3, fx, fy, nullptr, w.z);
-    }
+    evalPlane(pl + 3, fx, fy, nullptr, w.z);
+    if (d.wBuffer)  // w / w_far plus the depth bias the z plane carries
+      for (int h = 0; h < 2; ++h)
+        store8(w.z + 8 * h, load8(w.z + 8 * h) + bcast(d.invFarW) / load8(w.invW + 8 * h));
     for (int h = 0; h < 2; ++h) {
       // std::min(std::max(z, 0), 1): NaN stays NaN.
       v8f z = load8(w.z + 8 * h);

@@ -89,10 +89,10 @@ struct RasterDraw {
   uint32_t depthFunc = 4;
   bool stencil = false;
   // D3DZB_USEW: the depth tested and written is w / w_far (projectionFarW), from the
-  // interpolated 1/w, instead of z.
+  // interpolated 1/w, instead of z; the z planes then hold only the depth bias.
   bool wBuffer = false;
   float invFarW = 1.0f;
-  // D3DRS_DEPTHBIAS and SLOPESCALEDEPTHBIAS, added to triangles' z at setup.
+  // D3DRS_DEPTHBIAS and SLOPESCALEDEPTHBIAS, added to triangles' depth at setup.
   float depthBias = 0, slopeScaleDepthBias = 0;
   uint64_t* pixelsShaded = nullptr;  // per-thread counters (array of threadCount)
   // A Clear deferred to this draw: each tile is filled right before it is shaded
