@@ -481,6 +481,7 @@ namespace {
 struct SetupVertex {
   float x, y, z, invW;
   const Vec4* varyings;
+  float wDepthOffset = 0;  // w-buffering: the depth bias of the triangle a line or point outlines
 };
 
 void addPlane(std::vector<float>& planes, double a0, double a1, double a2, double x1, double y1,
@@ -509,8 +510,7 @@ inline int64_t roundHalfAway(double x) {
   return std::fabs(x - t) >= 0.5 ? (x < 0 ? i - 1 : i + 1) : i;
 }
 
-// The value the depth buffer holds for a vertex: z, or w / w_far when w-buffering
-// (then the vertices' z is 0 and the z plane carries only the depth bias).
+// The value the depth buffer holds for a vertex: z, or w / w_far when w-buffering.
 double bufferDepth(const RasterDraw& d, const SetupVertex& v) {
   return d.wBuffer ? double(d.invFarW) / double(v.invW) : double(v.z);
 }
@@ -568,7 +568,9 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
       slopeX = float((w1 * y2 - w2 * y1) / det);
       slopeY = float((w2 * x1 - w1 * x2) / det);
     }
-    z[0] += depthOffset(d.depthBias, d.slopeScaleDepthBias, slopeX, slopeY);
+    const float offset = depthOffset(d.depthBias, d.slopeScaleDepthBias, slopeX, slopeY);
+    if (d.wBuffer) p.wDepthOffset = offset;
+    else z[0] += offset;
   }
   for (const InterpolatedInput& in : d.inputs) {
     if (in.flat) {
@@ -609,6 +611,7 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
   p.originX = a.x;
   p.originY = a.y;
   p.planeOffset = uint32_t(d.planes.size());
+  p.wDepthOffset = a.wDepthOffset;
   const float len = bmaj - amaj;
   auto plane = [&](double va, double vb) {
     d.planes.push_back(float(va));
@@ -652,6 +655,7 @@ void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bou
   p.originX = a.x;
   p.originY = a.y;
   p.planeOffset = uint32_t(d.planes.size());
+  p.wDepthOffset = a.wDepthOffset;
   auto plane = [&](float v, float dx, float dy) {
     d.planes.push_back(v);
     d.planes.push_back(dx);
@@ -935,13 +939,13 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
       // XYZRHW: already in screen space; rhw is 1/w for perspective interpolation.
       s.x = p.x;
       s.y = p.y;
-      s.z = d.wBuffer ? 0.0f : p.z;  // w-buffering: z only carries the depth bias
+      s.z = p.z;
       s.invW = p.w != 0 ? p.w : 1.0f;
     } else {
       const float iw = 1.0f / p.w;
       s.x = float(vp.x) + (1.0f + p.x * iw) * 0.5f * float(vp.width);
       s.y = float(vp.y) + (1.0f - p.y * iw) * 0.5f * float(vp.height);
-      s.z = d.wBuffer ? 0.0f : vp.minZ + p.z * iw * (vp.maxZ - vp.minZ);
+      s.z = vp.minZ + p.z * iw * (vp.maxZ - vp.minZ);
       s.invW = iw;
     }
     s.varyings = out;
@@ -978,7 +982,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
         const double z1 = bufferDepth(d, sv[1]) - z0, z2 = bufferDepth(d, sv[2]) - z0;
         const float offset = depthOffset(d.depthBias, d.slopeScaleDepthBias,
                                          float((z1 * y2 - z2 * y1) / area), float((z2 * x1 - z1 * x2) / area));
-        for (SetupVertex& v : sv) v.z += offset;
+        for (SetupVertex& v : sv) (d.wBuffer ? v.wDepthOffset : v.z) += offset;
       }
       if (fill == FILL_WIREFRAME) {
         setupLine(d, sv[0], sv[1], bounds, flat);
