@@ -7,6 +7,8 @@
 #include <cstring>
 #include <optional>
 
+#include "clip.h"
+#include "depth.h"
 #include "ff_pixel.h"
 #include "ff_vertex.h"
 #include "raster.h"
@@ -165,6 +167,18 @@ void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
 void Device::setRenderState(RenderState s, uint32_t value) {
   if (s >= kRenderStateCount) fail("render state {} out of range", uint32_t(s));
   state_.renderStates[s] = value;
+}
+
+void Device::setClipPlane(int index, const float plane[4]) {
+  if (index < 0 || index >= kMaxUserClipPlanes)
+    fail("SetClipPlane: plane {} out of range (0-{})", index, kMaxUserClipPlanes - 1);
+  state_.clipPlanes[size_t(index)] = Vec4(plane[0], plane[1], plane[2], plane[3]);
+}
+
+Vec4 Device::getClipPlane(int index) const {
+  if (index < 0 || index >= kMaxUserClipPlanes)
+    fail("GetClipPlane: plane {} out of range (0-{})", index, kMaxUserClipPlanes - 1);
+  return state_.clipPlanes[size_t(index)];
 }
 
 void Device::setTextureStageState(int stage, TextureStageState s, uint32_t value) {
@@ -468,45 +482,6 @@ std::array<uint8_t, 32> inputComponentsRead(const exec::Program& p, const Device
   return used;
 }
 
-// Homogeneous clipping (Sutherland-Hodgman) against near z >= 0, far z <= w and a
-// guard band |x|,|y| <= g*w that keeps screen coordinates inside the fixed-point range.
-struct ClipVertex {
-  Vec4 v[kVaryingCount];
-};
-
-float planeDistance(const Vec4& p, int plane, float g) {
-  switch (plane) {
-    case 0: return p.z;            // near
-    case 1: return p.w - p.z;      // far
-    case 2: return g * p.w - p.x;  // right
-    case 3: return g * p.w + p.x;  // left
-    case 4: return g * p.w - p.y;  // top
-    default: return g * p.w + p.y; // bottom
-  }
-}
-
-void clipPolygon(std::vector<ClipVertex>& poly, float g) {
-  std::vector<ClipVertex> out;
-  for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
-    out.clear();
-    const size_t n = poly.size();
-    for (size_t i = 0; i < n; ++i) {
-      const ClipVertex& a = poly[i];
-      const ClipVertex& b = poly[(i + 1) % n];
-      const float da = planeDistance(a.v[0], plane, g), db = planeDistance(b.v[0], plane, g);
-      if (da >= 0) out.push_back(a);
-      if ((da >= 0) != (db >= 0)) {
-        const float t = da / (da - db);
-        ClipVertex c;
-        for (int k = 0; k < kVaryingCount; ++k)
-          for (int j = 0; j < 4; ++j) c.v[k][j] = a.v[k][j] + (b.v[k][j] - a.v[k][j]) * t;
-        out.push_back(c);
-      }
-    }
-    poly.swap(out);
-  }
-}
-
 }  // namespace
 
 // Primitive setup from screen-space vertices into the raster draw.
@@ -515,6 +490,7 @@ namespace {
 struct SetupVertex {
   float x, y, z, invW;
   const Vec4* varyings;
+  float wDepthOffset = 0;  // w-buffering: the depth bias of the triangle a line or point outlines
 };
 
 void addPlane(std::vector<float>& planes, double a0, double a1, double a2, double x1, double y1,
@@ -543,8 +519,14 @@ inline int64_t roundHalfAway(double x) {
   return std::fabs(x - t) >= 0.5 ? (x < 0 ? i - 1 : i + 1) : i;
 }
 
+// The value the depth buffer holds for a vertex: z, or w / w_far when w-buffering.
+double bufferDepth(const RasterDraw& d, const SetupVertex& v) {
+  return d.wBuffer ? double(d.invFarW) / double(v.invW) : double(v.z);
+}
+
+// `biased`: D3DRS_DEPTHBIAS/SLOPESCALEDEPTHBIAS apply (not to the pieces of a point).
 void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, const Rect& bounds,
-                   bool flat) {
+                   bool flat, bool biased = true) {
   constexpr double one = double(1 << kSubPixelBits);
   int64_t X[3], Y[3];
   for (int i = 0; i < 3; ++i) {
@@ -586,6 +568,19 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
   p.planeOffset = uint32_t(d.planes.size());
   addPlane(d.planes, sv[0].invW, sv[1].invW, sv[2].invW, x1, y1, x2, y2, det);
   addPlane(d.planes, sv[0].z, sv[1].z, sv[2].z, x1, y1, x2, y2, det);
+  if (biased && (d.depthBias != 0 || d.slopeScaleDepthBias != 0)) {
+    float* z = &d.planes[d.planes.size() - 3];  // base, dz/dx, dz/dy
+    float slopeX = z[1], slopeY = z[2];
+    if (d.wBuffer) {
+      // The slopes of the stored w / w_far across the vertices.
+      const double w0 = bufferDepth(d, sv[0]), w1 = bufferDepth(d, sv[1]) - w0, w2 = bufferDepth(d, sv[2]) - w0;
+      slopeX = float((w1 * y2 - w2 * y1) / det);
+      slopeY = float((w2 * x1 - w1 * x2) / det);
+    }
+    const float offset = depthOffset(d.depthBias, d.slopeScaleDepthBias, slopeX, slopeY);
+    if (d.wBuffer) p.wDepthOffset = offset;
+    else z[0] += offset;
+  }
   for (const InterpolatedInput& in : d.inputs) {
     if (in.flat) {
       d.planes.push_back(sv[0].varyings[in.varying][in.component]);
@@ -625,6 +620,7 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
   p.originX = a.x;
   p.originY = a.y;
   p.planeOffset = uint32_t(d.planes.size());
+  p.wDepthOffset = a.wDepthOffset;
   const float len = bmaj - amaj;
   auto plane = [&](double va, double vb) {
     d.planes.push_back(float(va));
@@ -646,28 +642,47 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
   d.prims.push_back(p);
 }
 
-void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bounds) {
+// A point is a screen-aligned square of side `size` centred on the vertex; it covers
+// the pixels whose centres lie in [x - size/2, x + size/2) x [y - size/2, y + size/2)
+// (the top-left rule of two triangles covering the square). With `sprite`
+// (D3DRS_POINTSPRITEENABLE) texture coordinates u, v of every set run across the
+// square, (0,0) at its top-left corner to (1,1) at its bottom-right; otherwise all
+// inputs keep the vertex's values.
+void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bounds, bool sprite) {
+  if (!std::isfinite(a.x) || !std::isfinite(a.y)) return;
   Primitive p{};
   p.kind = PrimKind::Point;
-  const float h = std::max(size, 1.0f) * 0.5f;
-  // Pixels whose centres lie in [x - h, x + h).
-  p.minX = std::max(bounds.left, int(std::ceil(a.x - h)));
-  p.maxX = std::min(bounds.right - 1, int(std::ceil(a.x + h)) - 1);
-  p.minY = std::max(bounds.top, int(std::ceil(a.y - h)));
-  p.maxY = std::min(bounds.bottom - 1, int(std::ceil(a.y + h)) - 1);
+  size = size >= 1.0f ? size : 1.0f;  // NaN too
+  const float h = size * 0.5f;
+  // Clamped as floats: far-away (guard band) or huge points stay in int range.
+  auto clampTo = [](float v, int lo, int hi) { return v <= float(lo) ? lo : v >= float(hi) ? hi : int(v); };
+  p.minX = clampTo(std::ceil(a.x - h), bounds.left, bounds.right);
+  p.maxX = clampTo(std::ceil(a.x + h) - 1, bounds.left - 1, bounds.right - 1);
+  p.minY = clampTo(std::ceil(a.y - h), bounds.top, bounds.bottom);
+  p.maxY = clampTo(std::ceil(a.y + h) - 1, bounds.top - 1, bounds.bottom - 1);
   if (p.minX > p.maxX || p.minY > p.maxY) return;
   p.originX = a.x;
   p.originY = a.y;
   p.planeOffset = uint32_t(d.planes.size());
-  auto constant = [&](float v) {
+  p.wDepthOffset = a.wDepthOffset;
+  auto plane = [&](float v, float dx, float dy) {
     d.planes.push_back(v);
-    d.planes.push_back(0);
-    d.planes.push_back(0);
+    d.planes.push_back(dx);
+    d.planes.push_back(dy);
   };
-  constant(a.invW);
-  constant(a.z);
-  for (const InterpolatedInput& in : d.inputs)
-    constant(a.varyings[in.varying][in.component] * (in.flat ? 1.0f : a.invW));
+  plane(a.invW, 0, 0);
+  plane(a.z, 0, 0);
+  for (const InterpolatedInput& in : d.inputs) {
+    const float scale = in.flat ? 1.0f : a.invW;  // non-flat planes hold value/w
+    const bool texCoord = in.varying >= kVertexOutTex0 && in.varying < kVertexOutTex0 + 8;
+    if (sprite && texCoord && in.component < 2) {
+      // At the centre 0.5, one unit across the side.
+      const float step = scale / size;
+      plane(0.5f * scale, in.component == 0 ? step : 0.0f, in.component == 1 ? step : 0.0f);
+      continue;
+    }
+    plane(a.varyings[in.varying][in.component] * scale, 0, 0);
+  }
   d.prims.push_back(p);
 }
 
@@ -886,6 +901,10 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.depthTest = depth_ && st.rs(RS_ZENABLE) != ZB_FALSE;
   d.depthWrite = d.depthTest && st.rs(RS_ZWRITEENABLE) != 0;
   d.depthFunc = st.rs(RS_ZFUNC);
+  d.wBuffer = st.rs(RS_ZENABLE) == ZB_USEW;
+  d.invFarW = 1.0f / projectionFarW(st.projection);
+  d.depthBias = st.rsFloat(RS_DEPTHBIAS);
+  d.slopeScaleDepthBias = st.rsFloat(RS_SLOPESCALEDEPTHBIAS);
   d.stencil = depth_ && st.rs(RS_STENCILENABLE) != 0;
   d.alphaTest = st.rs(RS_ALPHATESTENABLE) != 0;
   d.alphaFunc = st.rs(RS_ALPHAFUNC);
@@ -914,8 +933,20 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   const float gb = std::max(1.0f, 16384.0f / float(std::max({vp.width, vp.height, 1})));
   const uint32_t cull = st.rs(RS_CULLMODE);
   const uint32_t fill = st.rs(RS_FILLMODE);
-  const float pointSize = std::clamp(st.rsFloat(RS_POINTSIZE), st.rsFloat(RS_POINTSIZE_MIN),
-                                     std::max(st.rsFloat(RS_POINTSIZE_MIN), st.rsFloat(RS_POINTSIZE_MAX)));
+  // Point size: D3DRS_POINTSIZE clamped to POINTSIZE_MIN/MAX, or the vertex's own
+  // size (fixed-function T&L computes and clamps it, with POINTSCALEENABLE; a vertex
+  // shader's oPts is clamped here), finally limited to the caps' MaxPointSize.
+  const float sizeMin = st.rsFloat(RS_POINTSIZE_MIN);
+  const float sizeMax = std::max(sizeMin, st.rsFloat(RS_POINTSIZE_MAX));
+  const float deviceMaxPointSize = std::max(caps_.maxPointSize, 1.0f);
+  const float renderStatePointSize = std::clamp(st.rsFloat(RS_POINTSIZE), sizeMin, sizeMax);
+  const bool vertexPointSize = !vs || vcfg.hasPSize;
+  auto pointSizeOf = [&](const Vec4* out) {
+    const float size = vertexPointSize ? std::clamp(out[kVertexOutPSize].x, sizeMin, sizeMax)
+                                       : renderStatePointSize;
+    return size >= 1.0f ? std::min(size, deviceMaxPointSize) : 1.0f;  // NaN: 1
+  };
+  const bool pointSprite = st.rs(RS_POINTSPRITEENABLE) != 0;
 
   auto toScreen = [&](const Vec4* out, SetupVertex& s) {
     const Vec4& p = out[0];
@@ -935,9 +966,12 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     s.varyings = out;
   };
   auto vertexOut = [&](uint32_t i) -> const Vec4* { return verts[i - lo].out; };
-  auto outside = [&](const Vec4& p) {  // needs clipping against near/far/guard band
-    return p.z < 0 || p.z > p.w || std::fabs(p.x) > gb * p.w || std::fabs(p.y) > gb * p.w;
-  };
+  // Near/far, the guard band and the user clip planes. Pretransformed vertices are
+  // not clipped (they have no clip space; D3DPMISCCAPS_CLIPTLVERTS concerns the
+  // viewport, which the rasterizer's bounds already enforce).
+  ClipPlanes clip;
+  clip.guardBand = gb;
+  if (!vcfg.pretransformed) userClipPlanes(st, vs != nullptr, clip);
 
   std::vector<ClipVertex> poly;
   auto triangle = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
@@ -955,21 +989,33 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
       const double area = double(sv[1].x - sv[0].x) * (sv[2].y - sv[0].y) -
                           double(sv[2].x - sv[0].x) * (sv[1].y - sv[0].y);
       if (area == 0 || (cull == CULL_CCW && area < 0) || (cull == CULL_CW && area > 0)) return;
+      if (d.depthBias != 0 || d.slopeScaleDepthBias != 0) {
+        // The triangle's depth offset applies to its edges and vertices as well.
+        const double x1 = sv[1].x - sv[0].x, y1 = sv[1].y - sv[0].y;
+        const double x2 = sv[2].x - sv[0].x, y2 = sv[2].y - sv[0].y;
+        const double z0 = bufferDepth(d, sv[0]);
+        const double z1 = bufferDepth(d, sv[1]) - z0, z2 = bufferDepth(d, sv[2]) - z0;
+        const float offset = depthOffset(d.depthBias, d.slopeScaleDepthBias,
+                                         float((z1 * y2 - z2 * y1) / area), float((z2 * x1 - z1 * x2) / area));
+        for (SetupVertex& v : sv) (d.wBuffer ? v.wDepthOffset : v.z) += offset;
+      }
       if (fill == FILL_WIREFRAME) {
         setupLine(d, sv[0], sv[1], bounds, flat);
         setupLine(d, sv[1], sv[2], bounds, flat);
         setupLine(d, sv[2], sv[0], bounds, flat);
       } else {
-        for (auto& v : sv) setupPoint(d, v, pointSize, bounds);
+        const Vec4* outs[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k) setupPoint(d, sv[k], pointSizeOf(outs[k]), bounds, pointSprite);
       }
     };
-    if (vcfg.pretransformed || (!outside(o[0][0]) && !outside(o[1][0]) && !outside(o[2][0]))) {
+    if (vcfg.pretransformed ||
+        (!clip.outside(o[0][0]) && !clip.outside(o[1][0]) && !clip.outside(o[2][0]))) {
       emit(o[0], o[1], o[2]);
       return;
     }
     poly.assign(3, {});
     for (int k = 0; k < 3; ++k) std::memcpy(poly[k].v, o[k], sizeof(poly[k].v));
-    clipPolygon(poly, gb);
+    clipPolygon(poly, clip);
     for (size_t k = 2; k < poly.size(); ++k) {
       // Clipped vertices keep the provoking (first) vertex's flat colors.
       emit(poly[0].v, poly[k - 1].v, poly[k].v);
@@ -978,40 +1024,48 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   auto line = [&](uint32_t i0, uint32_t i1) {
     const Vec4* a = vertexOut(i0);
     const Vec4* b = vertexOut(i1);
-    if (!vcfg.pretransformed && (outside(a[0]) || outside(b[0]))) {
-      // Clip the segment parametrically against the same planes.
-      float t0 = 0, t1 = 1;
-      for (int plane = 0; plane < 6; ++plane) {
-        const float da = planeDistance(a[0], plane, gb), db = planeDistance(b[0], plane, gb);
-        if (da < 0 && db < 0) return;
-        if (da < 0) t0 = std::max(t0, da / (da - db));
-        if (db < 0) t1 = std::min(t1, da / (da - db));
-      }
-      if (t0 >= t1) return;
+    SetupVertex sa, sb;
+    if (!vcfg.pretransformed && (clip.outside(a[0]) || clip.outside(b[0]))) {
       ClipVertex ca, cb;
-      for (int k = 0; k < kVaryingCount; ++k)
-        for (int j = 0; j < 4; ++j) {
-          ca.v[k][j] = a[k][j] + (b[k][j] - a[k][j]) * t0;
-          cb.v[k][j] = a[k][j] + (b[k][j] - a[k][j]) * t1;
-        }
-      SetupVertex sa, sb;
+      if (!clipSegment(a, b, clip, ca, cb)) return;
       toScreen(ca.v, sa);
       toScreen(cb.v, sb);
-      setupLine(d, sa, sb, bounds, flat);
-      return;
+    } else {
+      toScreen(a, sa);
+      toScreen(b, sb);
     }
-    SetupVertex sa, sb;
-    toScreen(a, sa);
-    toScreen(b, sb);
     setupLine(d, sa, sb, bounds, flat);
   };
   auto point = [&](uint32_t i) {
     const Vec4* a = vertexOut(i);
-    if (!vcfg.pretransformed && outside(a[0])) return;
+    // A point whose centre is outside the view volume is culled whole.
+    if (!vcfg.pretransformed && clip.outsideVolume(a[0])) return;
+    const float size = pointSizeOf(a);
+    if (!vcfg.pretransformed && clip.userCount) {
+      // User planes clip the point's square like a polygon
+      // (D3DPMISCCAPS_CLIPPLANESCALEDPOINTS): the corners, then two triangles per
+      // clipped piece, with the same coverage rule and constant (or sprite) values.
+      const float side = std::max(size, 1.0f) * a[0].w;  // half side * 2w
+      ClipVertex corners[4];
+      pointCorners(a, side / float(vp.width), side / float(vp.height), pointSprite, corners);
+      bool inside = true;
+      for (const ClipVertex& c : corners) inside &= clip.insideUser(c.v[0]);
+      if (!inside) {
+        poly.assign(corners, corners + 4);
+        clipPolygon(poly, clip);
+        for (size_t k = 2; k < poly.size(); ++k) {
+          SetupVertex sv[3];
+          toScreen(poly[0].v, sv[0]);
+          toScreen(poly[k - 1].v, sv[1]);
+          toScreen(poly[k].v, sv[2]);
+          setupTriangle(d, sv, CULL_NONE, bounds, flat, false);
+        }
+        return;
+      }
+    }
     SetupVertex s;
     toScreen(a, s);
-    const float size = vcfg.hasPSize ? a[kVertexOutPSize].x : pointSize;
-    setupPoint(d, s, size, bounds);
+    setupPoint(d, s, size, bounds, pointSprite);
   };
 
   switch (type) {

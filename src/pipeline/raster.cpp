@@ -155,7 +155,12 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   evalPlane(pl, fx, fy, nullptr, w.invW);
   const v8f zero{}, one = zero + 1.0f;
   if (d.depthTest || d.usesPosition) {  // z is read by the depth test and vPos only
-    evalPlane(pl + 3, fx, fy, nullptr, w.z);
+    if (d.wBuffer) {  // w / w_far plus the primitive's depth bias
+      for (int h = 0; h < 2; ++h)
+        store8(w.z + 8 * h, bcast(d.invFarW) / load8(w.invW + 8 * h) + bcast(p.wDepthOffset));
+    } else {
+      evalPlane(pl + 3, fx, fy, nullptr, w.z);
+    }
     for (int h = 0; h < 2; ++h) {
       // std::min(std::max(z, 0), 1): NaN stays NaN.
       v8f z = load8(w.z + 8 * h);
@@ -175,10 +180,12 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   }
   if (d.usesPosition) {
     auto& pos = w.regs.inputs[kPixelInPosition];
+    // The position's z is the interpolated z, also when the depth buffer holds w.
+    if (d.wBuffer) evalPlane(pl + 3, fx, fy, nullptr, pos.c[2]);
     for (int l = 0; l < N; ++l) {
       pos.c[0][l] = float(bx + kLaneX[l]);
       pos.c[1][l] = float(by + kLaneY[l]);
-      pos.c[2][l] = w.z[l];
+      if (!d.wBuffer) pos.c[2][l] = w.z[l];
       pos.c[3][l] = wv[l / 8][l % 8];
     }
   }

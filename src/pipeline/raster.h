@@ -52,7 +52,8 @@ struct Primitive {
   float lineM, lineQ;
   // Interpolation planes: value(x,y) = base + dx*(x - originX) + dy*(y - originY).
   float originX, originY;
-  uint32_t planeOffset;  // into RasterDraw::planes: [invW, z, then inputs' attr/w (or attr when flat)]
+  uint32_t planeOffset;
+  float wDepthOffset;  // w-buffering: the depth bias added to w / w_far  // into RasterDraw::planes: [invW, z, then inputs' attr/w (or attr when flat)]
 };
 
 // Direct3D 9 binds up to four render targets (SetRenderTarget 0-3).
@@ -98,6 +99,13 @@ struct RasterDraw {
   bool depthTest = false, depthWrite = false;
   uint32_t depthFunc = 4;
   bool stencil = false;
+  // D3DZB_USEW: the depth tested and written is w / w_far (projectionFarW), from the
+  // interpolated 1/w, plus Primitive::wDepthOffset, instead of z.
+  bool wBuffer = false;
+  float invFarW = 1.0f;
+  // D3DRS_DEPTHBIAS and SLOPESCALEDEPTHBIAS, added to triangles' depth at setup (their z
+  // planes, or wDepthOffset).
+  float depthBias = 0, slopeScaleDepthBias = 0;
   uint64_t* pixelsShaded = nullptr;  // per-thread counters (array of threadCount)
   // A Clear deferred to this draw: each tile is filled right before it is shaded
   // (tiles without primitives too), so the target is written once while in cache.

@@ -196,6 +196,10 @@ class Runner {
     device_.setRenderTarget(r.index, t);
     out_.targets[size_t(r.index)] = std::move(t);
   }
+  void apply(const SetClipPlane& c) {
+    const float plane[4] = {c.plane.x, c.plane.y, c.plane.z, c.plane.w};
+    device_.setClipPlane(c.index, plane);
+  }
 
   const SceneScript& script_;
   Device& device_;

@@ -312,6 +312,7 @@ class Parser {
         {"material", &Parser::material}, {"light", &Parser::light},
         {"viewport", &Parser::viewport}, {"scissor", &Parser::scissor},
         {"rendertarget", &Parser::renderTarget},
+        {"clipplane", &Parser::clipPlane},
     };
     for (const CommandEntry& c : kCommands) {
       if (c.name == name) {
@@ -322,7 +323,7 @@ class Parser {
     throw Error(SourceLocation{script_.file, line_, tok_[0].col},
                 fmt::format("unknown command '{}' (expected size, clear, rs, tss, samp, "
                             "texture, settex, vs, ps, vsconst, psconst, fvf, v, i, draw, "
-                            "transform, material, light, viewport, scissor or rendertarget)",
+                            "transform, material, light, viewport, scissor, rendertarget or clipplane)",
                             tok_[0].text));
   }
 
@@ -930,6 +931,15 @@ class Parser {
     r.right = integer(3, "R", r.left, kMaxTargetSize);
     r.bottom = integer(4, "B", r.top, kMaxTargetSize);
     add(SetScissor{r});
+  }
+
+  // ---- clipplane N A B C D
+  void clipPlane() {
+    need(5, 5, "N A B C D");
+    SetClipPlane c;
+    c.index = integer(1, "N", 0, kMaxUserClipPlanes - 1);
+    for (int k = 0; k < 4; ++k) c.plane[k] = number(2 + size_t(k), std::string(1, "ABCD"[k]));
+    add(c);
   }
 
   std::string_view text_;

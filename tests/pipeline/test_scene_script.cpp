@@ -376,6 +376,14 @@ TEST(SceneScript, TransformMaterialLightsViewport) {
   EXPECT_EQ(r.bottom, 31);
 }
 
+TEST(SceneScript, ClipPlane) {
+  SceneScript s = parseSceneScript("clipplane 5 1 -2 0.5 -0.25\n", "s.scene");
+  ASSERT_EQ(s.commands.size(), 1u);
+  const SetClipPlane& c = nth<SetClipPlane>(s, 0);
+  EXPECT_EQ(c.index, 5);
+  EXPECT_EQ(c.plane, Vec4(1, -2, 0.5f, -0.25f));
+}
+
 TEST(SceneScript, Expectations) {
   SceneScript s = parseSceneScript(
       "size 8 8\n"
@@ -445,6 +453,9 @@ TEST(SceneScript, ErrorsNameFileLineAndWhatWasExpected) {
       {"light 0 point 1,1,1 0,0,0 0,0,0 1 2\n", "s.scene:1: error: light: expected `light N directional|point"},
       {"size 16 16\nviewport 8 8 16 16\n", "s.scene:2:10: error: viewport: 8,8 16x16 does not fit the 16x16 render target"},
       {"size 16 16\n# expect 16 0 0 0 0 0\n", "s.scene:2: error: expect: pixel 16,0 is outside the 16x16 render target"},
+      {"clipplane 6 1 0 0 0\n", "s.scene:1:11: error: clipplane: N 6 is out of range (0 to 5)"},
+      {"clipplane 0 1 0 0\n", "s.scene:1: error: clipplane: expected `clipplane N A B C D`, got 4 values"},
+      {"clipplane 0 1 0 zero 0\n", "s.scene:1:17: error: clipplane: expected a number for C, got 'zero'"},
       {"# expect 1 2 3\n", "s.scene:1:3: error: expect: expected `# expect X Y r g b a [tolerance]`, got 3 values"},
       {"# expect 1 2 3 4 256 0\n", "s.scene:1:18: error: expect: expected a 0-255 channel value from 0 to 255, got '256'"},
   };

@@ -97,6 +97,9 @@ class Device {
   void setMaterial(const Material& m) { state_.material = m; }
   void setViewport(const Viewport& vp) { state_.viewport = vp; }
   void setScissorRect(const Rect& r) { state_.scissor = r; }
+  // SetClipPlane / GetClipPlane: index 0-5, plane (A, B, C, D).
+  void setClipPlane(int index, const float plane[4]);
+  Vec4 getClipPlane(int index) const;
 
   void setFVF(uint32_t fvf) { state_.declaration = VertexDeclaration::fromFVF(fvf); }
   void setVertexDeclaration(VertexDeclaration decl) { state_.declaration = std::move(decl); }

@@ -117,10 +117,15 @@ struct SetRenderTarget {
   int width = 0, height = 0;
   Format format = Format::A8R8G8B8;
 };
+struct SetClipPlane {
+  int index = 0;
+  Vec4 plane;  // A, B, C, D
+};
 
 using Action = std::variant<Clear, SetRenderState, SetStageState, SetSamplerState, TextureDef,
                             SetTexture, Shader, SetConstants, Draw, SetTransform, SetMaterial,
-                            SetLight, SetViewport, SetScissor, SetRenderTarget>;
+                            SetLight, SetViewport, SetScissor, SetRenderTarget,
+                            SetClipPlane>;
 
 struct Command {
   int line = 0;

@@ -23,6 +23,7 @@ constexpr int kMaxVertexShaderConstF = 256;
 constexpr int kMaxPixelShaderConstF = 224;
 constexpr int kMaxShaderConstI = 16;
 constexpr int kMaxShaderConstB = 16;
+constexpr int kMaxUserClipPlanes = 6;  // SetClipPlane indices 0-5 (D3DMAXUSERCLIPPLANES)
 
 struct Light {  // D3DLIGHT9
   uint32_t type = d3d::LIGHT_DIRECTIONAL;
@@ -101,6 +102,9 @@ struct DeviceState {
   Material material{};
   Viewport viewport{};
   Rect scissor{};
+  // SetClipPlane (A, B, C, D): world space for fixed function, clip space for vertex
+  // shaders; D3DRS_CLIPPLANEENABLE bit i enables plane i.
+  std::array<Vec4, kMaxUserClipPlanes> clipPlanes{};
   VertexDeclaration declaration;
   std::array<StreamSource, 16> streams{};
   IndexBufferPtr indices;
