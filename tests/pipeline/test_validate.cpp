@@ -7,6 +7,8 @@
 #include "refx/pipeline/caps.h"
 #include "refx/pipeline/state.h"
 #include "pipeline/validate.h"
+#include "refx/pipeline/shader_object.h"
+#include "refx/shader/assembler.h"
 
 using namespace refx;
 using namespace refx::d3d;
@@ -545,4 +547,57 @@ TEST(ValidateDevice, RenderTargetsAreLimited) {
             "PrimitiveMiscCaps of shared-masks");
   // With one target bound, COLORWRITEENABLE1 is not used.
   EXPECT_TRUE(validateDeviceState(m, shared, {1, false}).ok);
+}
+
+// ---------------------------------------------------------------------------
+// With shaders, the samplers the shader declares or reads are the ones in use.
+
+namespace {
+
+std::shared_ptr<const PixelShader> pixelShader(std::string_view text) {
+  return std::make_shared<PixelShader>(shader::assembleTokens(text, "p.psh"));
+}
+std::shared_ptr<const VertexShader> vertexShader(std::string_view text) {
+  return std::make_shared<VertexShader>(shader::assembleTokens(text, "v.vsh"));
+}
+
+}  // namespace
+
+TEST(ValidateDevice, PixelShaderSamplersAreTheOnesInUse) {
+  CapsProfile noAniso = variant("ref", "no-aniso-filter");
+  noAniso.textureFilterCaps &= ~0x400u;  // D3DPTFILTERCAPS_MINFANISOTROPIC
+  DeviceState s;
+  for (int i : {0, 1, 2}) {
+    s.textures[i] = tex2D();
+    s.samplerStates[i][SAMP_MINFILTER] = 3;  // ANISOTROPIC
+  }
+  // ps_2_0 reads s1 only: sampler 0 and 2 hold textures the shader never samples.
+  s.pixelShader = pixelShader("ps_2_0\ndcl t0.xy\ndcl_2d s1\ntexld r0, t0, s1\nmov oC0, r0\n");
+  EXPECT_EQ(reason(s, noAniso),
+            "sampler 1 MINFILTER ANISOTROPIC needs MINFANISOTROPIC in TextureFilterCaps of "
+            "no-aniso-filter");
+  s.samplerStates[1][SAMP_MINFILTER] = 2;  // LINEAR
+  EXPECT_EQ(reason(s, noAniso), "ok");
+  // ps_1_1 `tex t2` samples stage 2's texture.
+  s.pixelShader = pixelShader("ps_1_1\ntex t2\nmov r0, t2\n");
+  EXPECT_EQ(reason(s, noAniso),
+            "sampler 2 MINFILTER ANISOTROPIC needs MINFANISOTROPIC in TextureFilterCaps of "
+            "no-aniso-filter");
+}
+
+TEST(ValidateDevice, VertexSamplersNeedVertexTextureFilterCaps) {
+  // The NV40 fetches vertex textures with point filtering only
+  // (VertexTextureFilterCaps MINFPOINT | MAGFPOINT).
+  DeviceState s;
+  s.textures[kVertexSampler0] = tex2D();
+  s.vertexShader = vertexShader(
+      "vs_3_0\ndcl_position v0\ndcl_2d s0\ndcl_position o0\ndcl_color0 o1\n"
+      "mov o0, v0\ntexldl r0, v0, s0\nmov o1, r0\n");
+  s.pixelShader = pixelShader("ps_3_0\ndcl_color0 v0\nmov oC0, v0\n");
+  EXPECT_EQ(reason(s, "dx9-sm3"), "ok");
+  s.samplerStates[kVertexSampler0][SAMP_MAGFILTER] = 2;  // LINEAR
+  EXPECT_EQ(reason(s, "dx9-sm3"),
+            "vertex sampler 0 MAGFILTER LINEAR needs MAGFLINEAR in VertexTextureFilterCaps of "
+            "dx9-sm3");
+  EXPECT_EQ(reason(s, "ref"), "ok");
 }
