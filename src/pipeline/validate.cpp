@@ -1,6 +1,7 @@
 // ValidateDevice for the shaders (their versions and constants against the profile,
 // and the version rules of the shader layer), the fixed-function texture cascade,
-// bound textures and the sampler states of the samplers in use, the fixed-function
+// bound textures (their sizes, mipmaps and power-of-two shapes against TextureCaps)
+// and the sampler states of the samplers in use, the fixed-function
 // vertex limits (lights, vertex blending), clip planes, point size, raster states,
 // render targets and the output merger. With a pixel shader bound the texture stage
 // cascade is not used and is not checked. Every reason names the caps field (and
@@ -23,6 +24,12 @@ using namespace d3d;
 
 namespace {
 
+// A caps bit with its flag name, for the reasons.
+struct CapBit {
+  uint32_t bit;
+  std::string_view name;
+};
+
 // D3DPMISCCAPS_* and D3DPTEXTURECAPS_* bits the checks below read.
 constexpr uint32_t kMiscTssArgTemp = 0x400;
 constexpr uint32_t kMiscBlendOp = 0x800;
@@ -30,6 +37,14 @@ constexpr uint32_t kMiscPerStageConstant = 0x8000;
 constexpr uint32_t kMiscSeparateAlphaBlend = 0x20000;
 constexpr uint32_t kTexCapsCubeMap = 0x800;
 constexpr uint32_t kTexCapsVolumeMap = 0x2000;
+constexpr uint32_t kTexCapsPow2 = 0x2;
+constexpr uint32_t kTexCapsNonPow2Conditional = 0x100;
+constexpr uint32_t kTexCapsProjected = 0x400;
+constexpr uint32_t kTexCapsCubeMapPow2 = 0x20000;
+constexpr uint32_t kTexCapsVolumeMapPow2 = 0x40000;
+constexpr CapBit kTexCapsMipMap{0x4000, "MIPMAP"};
+constexpr CapBit kTexCapsMipVolumeMap{0x8000, "MIPVOLUMEMAP"};
+constexpr CapBit kTexCapsMipCubeMap{0x10000, "MIPCUBEMAP"};
 constexpr uint32_t kMiscMaskZ = 0x2;
 constexpr uint32_t kMiscCullNone = 0x10;
 constexpr uint32_t kMiscCullCW = 0x20;
@@ -40,11 +55,7 @@ constexpr uint32_t kMiscMrtPostPixelShaderBlending = 0x80000;
 constexpr uint32_t kMiscMrtIndependentBitDepths = 0x40000;
 constexpr uint32_t kAddressIndependentUV = 0x10;
 
-// D3DPRASTERCAPS_* bits, with their names for the reasons.
-struct CapBit {
-  uint32_t bit;
-  std::string_view name;
-};
+// D3DPRASTERCAPS_* bits.
 constexpr CapBit kRasterDither{0x1, "DITHER"};
 constexpr CapBit kRasterZTest{0x10, "ZTEST"};
 constexpr CapBit kRasterFogVertex{0x80, "FOGVERTEX"};
@@ -148,6 +159,8 @@ OpUse opUse(uint32_t op) {
     default: return {false, true, true, false, false};
   }
 }
+
+bool isPow2(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
 bool validOp(uint32_t op) { return op >= TOP_DISABLE && op <= TOP_LERP; }
 uint32_t opCapsBit(uint32_t op) { return 1u << (op - 1); }
@@ -257,6 +270,11 @@ class Validator {
                            n, caps_.name);
       // Fixed function: stage n samples the texture bound to sampler n.
       if (usesTexture) stagesSampled_ |= 1u << n;
+      if (usesTexture && (s_.tss(n, TSS_TEXTURETRANSFORMFLAGS) & TTFF_PROJECTED) &&
+          !(caps_.textureCaps & kTexCapsProjected))
+        return fmt::format("stage {} TEXTURETRANSFORMFLAGS PROJECTED needs PROJECTED in "
+                           "TextureCaps of {}",
+                           n, caps_.name);
       if (usesTexture && ++texturesUsed > caps_.maxSimultaneousTextures)
         return fmt::format(
             "stage {} is stage number {} to use a texture but {} has MaxSimultaneousTextures {}",
@@ -410,7 +428,46 @@ class Validator {
                                        bitsFloat(s_.samp(i, SAMP_MIPMAPLODBIAS))),
                            kRasterMipMapLodBias);
       if (auto r = addressing(i, sampler, tex->type() == TextureType::Volume)) return r;
+      if (auto r = textureShape(i, sampler, *tex)) return r;
     }
+    return std::nullopt;
+  }
+
+  // Mipmaps and power-of-two sizes against TextureCaps.
+  std::optional<std::string> textureShape(int i, const std::string& sampler, const Texture& tex) {
+    const bool mipmapped = tex.levelCount() > 1 && s_.samp(i, SAMP_MIPFILTER) != kFilterNone;
+    const CapBit mipCap = tex.type() == TextureType::Cube     ? kTexCapsMipCubeMap
+                          : tex.type() == TextureType::Volume ? kTexCapsMipVolumeMap
+                                                              : kTexCapsMipMap;
+    if (mipmapped && !(caps_.textureCaps & mipCap.bit))
+      return fmt::format("{} mipmapped texture ({} levels, MIPFILTER {}) needs {} in TextureCaps "
+                         "of {}",
+                         sampler, tex.levelCount(),
+                         nameOr(EnumKind::TextureFilter, s_.samp(i, SAMP_MIPFILTER)),
+                         mipCap.name, caps_.name);
+    const bool pow2 = isPow2(tex.width()) && isPow2(tex.height()) &&
+                      (tex.type() != TextureType::Volume || isPow2(tex.depth()));
+    if (pow2) return std::nullopt;
+    if (tex.type() == TextureType::Cube && (caps_.textureCaps & kTexCapsCubeMapPow2))
+      return fmt::format("{} cube texture is {} texels wide but {} has CUBEMAP_POW2 in TextureCaps",
+                         sampler, tex.width(), caps_.name);
+    if (tex.type() == TextureType::Volume && (caps_.textureCaps & kTexCapsVolumeMapPow2))
+      return fmt::format("{} volume texture is {}x{}x{} but {} has VOLUMEMAP_POW2 in TextureCaps",
+                         sampler, tex.width(), tex.height(), tex.depth(), caps_.name);
+    if (tex.type() != TextureType::Texture2D || !(caps_.textureCaps & kTexCapsPow2))
+      return std::nullopt;
+    const std::string size = fmt::format("{} texture is {}x{}", sampler, tex.width(), tex.height());
+    if (!(caps_.textureCaps & kTexCapsNonPow2Conditional))
+      return fmt::format("{} but {} has POW2 in TextureCaps", size, caps_.name);
+    // NONPOW2CONDITIONAL: other sizes only clamped and without mipmaps.
+    if (s_.samp(i, SAMP_ADDRESSU) != 3 || s_.samp(i, SAMP_ADDRESSV) != 3)
+      return fmt::format("{}: with POW2 and NONPOW2CONDITIONAL in TextureCaps of {} it must be "
+                         "addressed with CLAMP",
+                         size, caps_.name);
+    if (mipmapped)
+      return fmt::format("{}: with POW2 and NONPOW2CONDITIONAL in TextureCaps of {} it cannot be "
+                         "mipmapped",
+                         size, caps_.name);
     return std::nullopt;
   }
 

@@ -601,3 +601,54 @@ TEST(ValidateDevice, VertexSamplersNeedVertexTextureFilterCaps) {
             "dx9-sm3");
   EXPECT_EQ(reason(s, "ref"), "ok");
 }
+
+// ---------------------------------------------------------------------------
+// Texture shapes and projection against TextureCaps.
+
+TEST(ValidateDevice, PowerOfTwoRestrictions) {
+  // The TNT2 has POW2 without NONPOW2CONDITIONAL: power-of-two sizes only.
+  DeviceState s = textured(Texture::create2D(Format::A8R8G8B8, 6, 4));
+  EXPECT_EQ(reason(s, "dx6-tnt2"), "sampler 0 texture is 6x4 but dx6-tnt2 has POW2 in TextureCaps");
+  // The GeForce2 has NONPOW2CONDITIONAL: other sizes clamped and without mipmaps.
+  EXPECT_EQ(reason(s, "dx7"),
+            "sampler 0 texture is 6x4: with POW2 and NONPOW2CONDITIONAL in TextureCaps of dx7 it "
+            "must be addressed with CLAMP");
+  s.samplerStates[0][SAMP_ADDRESSU] = s.samplerStates[0][SAMP_ADDRESSV] = 3;  // CLAMP
+  EXPECT_EQ(reason(s, "dx7"), "ok");
+  s.textures[0] = Texture::create2D(Format::A8R8G8B8, 6, 4, 2);
+  s.samplerStates[0][SAMP_MIPFILTER] = 1;  // POINT
+  EXPECT_EQ(reason(s, "dx7"),
+            "sampler 0 texture is 6x4: with POW2 and NONPOW2CONDITIONAL in TextureCaps of dx7 it "
+            "cannot be mipmapped");
+  EXPECT_EQ(reason(s, "dx9-sm3"), "ok");  // no restriction
+  // Cube maps: CUBEMAP_POW2.
+  DeviceState c = textured(Texture::createCube(Format::A8R8G8B8, 6));
+  EXPECT_EQ(reason(c, "dx7"), "sampler 0 cube texture is 6 texels wide but dx7 has CUBEMAP_POW2 in TextureCaps");
+  EXPECT_EQ(reason(c, "ref"), "ok");
+  DeviceState v = textured(Texture::createVolume(Format::A8R8G8B8, 4, 4, 3));
+  EXPECT_EQ(reason(v, "dx8"), "sampler 0 volume texture is 4x4x3 but dx8 has VOLUMEMAP_POW2 in TextureCaps");
+  EXPECT_EQ(reason(v, "ref"), "ok");
+}
+
+TEST(ValidateDevice, MipmapsNeedTheMipCapsOfTheirType) {
+  DeviceState s = textured(Texture::createVolume(Format::A8R8G8B8, 4, 4, 4, 3));
+  CapsProfile noVolumeMips = variant("ref", "no-volume-mips");
+  noVolumeMips.textureCaps &= ~0x8000u;  // D3DPTEXTURECAPS_MIPVOLUMEMAP
+  // MIPFILTER NONE samples level 0 only.
+  EXPECT_EQ(reason(s, noVolumeMips), "ok");
+  s.samplerStates[0][SAMP_MIPFILTER] = 2;  // LINEAR
+  EXPECT_EQ(reason(s, noVolumeMips),
+            "sampler 0 mipmapped texture (3 levels, MIPFILTER LINEAR) needs MIPVOLUMEMAP in "
+            "TextureCaps of no-volume-mips");
+  EXPECT_EQ(reason(s, "ref"), "ok");
+}
+
+TEST(ValidateDevice, ProjectedStagesNeedProjectedTextures) {
+  // D3DTTFF_PROJECTED on a stage that samples its texture: the DirectX 6 parts lack
+  // D3DPTEXTURECAPS_PROJECTED.
+  DeviceState s = textured(tex2D());
+  s.stageStates[0][TSS_TEXTURETRANSFORMFLAGS] = TTFF_COUNT3 | TTFF_PROJECTED;
+  EXPECT_EQ(reason(s, "dx6-tnt2"),
+            "stage 0 TEXTURETRANSFORMFLAGS PROJECTED needs PROJECTED in TextureCaps of dx6-tnt2");
+  EXPECT_EQ(reason(s, "dx7"), "ok");
+}
