@@ -198,6 +198,15 @@ std::string_view prefix(StateClass c) {
   return "";
 }
 
+std::string_view kindName(StateClass c) {
+  switch (c) {
+    case StateClass::Render: return "render";
+    case StateClass::TextureStage: return "texture stage";
+    case StateClass::Sampler: return "sampler";
+  }
+  return "";
+}
+
 uint32_t defaultValue(StateClass c, uint32_t state) {
   static const DeviceState defaults;
   switch (c) {
@@ -252,6 +261,11 @@ std::string stateDisplayName(StateClass stateClass, uint32_t state) {
 
 void requireImplementedState(StateClass stateClass, uint32_t state, uint32_t value) {
   const StateSupportEntry* e = findStateSupport(stateClass, state);
+  // A number between the D3D9 states (a DirectX 8 state such as D3DRS_ZBIAS 47, or
+  // none at all) does nothing in refx: only its zero default is stored.
+  if (!e && value != 0)
+    fail("{} state {} is not a Direct3D 9 {} state", kindName(stateClass), state,
+         kindName(stateClass));
   if (!e || e->support != StateSupport::DefaultOnly) return;
   const uint32_t def = defaultValue(stateClass, state);
   if (value == def) return;

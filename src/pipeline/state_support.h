@@ -31,7 +31,8 @@ const StateSupportEntry* findStateSupport(StateClass stateClass, uint32_t state)
 // "D3DRS_ZENABLE"; a plain number for an unnamed state.
 std::string stateDisplayName(StateClass stateClass, uint32_t state);
 // Throws refx::Error "D3DRS_X is not implemented by refx (...)" when `value` differs
-// from the D3D9 default of a DefaultOnly state.
+// from the D3D9 default of a DefaultOnly state, and for a nonzero value of a number
+// that is no D3D9 state.
 void requireImplementedState(StateClass stateClass, uint32_t state, uint32_t value);
 
 }  // namespace refx

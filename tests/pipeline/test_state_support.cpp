@@ -104,6 +104,19 @@ TEST(StateSupport, DeviceRefusesNonDefaultValuesOfUnimplementedStates) {
             "accepted, not 4)");
 }
 
+TEST(StateSupport, NumbersThatAreNoD3D9StateTakeOnlyZero) {
+  auto dev = test::makeDevice(2, 2);
+  // 47 was D3D8's D3DRS_ZBIAS; D3D9 has no render state 47 (DEPTHBIAS is 195).
+  EXPECT_EQ(errorOf([&] { dev->setRenderState(RenderState(47), 1); }),
+            "render state 47 is not a Direct3D 9 render state");
+  EXPECT_NO_THROW(dev->setRenderState(RenderState(47), 0));
+  // D3D8's texture stage ADDRESSU (13) became D3DSAMP_ADDRESSU.
+  EXPECT_EQ(errorOf([&] { dev->setTextureStageState(0, TextureStageState(13), 3); }),
+            "texture stage state 13 is not a Direct3D 9 texture stage state");
+  EXPECT_EQ(errorOf([&] { dev->setSamplerState(0, SamplerStateType(0), 1); }),
+            "sampler state 0 is not a Direct3D 9 sampler state");
+}
+
 TEST(StateSupport, DefaultsAndNoEffectStatesAreAccepted) {
   auto dev = test::makeDevice(2, 2);
   const DeviceState defaults;
