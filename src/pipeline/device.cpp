@@ -12,6 +12,7 @@
 #include "ff_pixel.h"
 #include "ff_vertex.h"
 #include "raster.h"
+#include "state_support.h"
 #include "refx/core/diagnostics.h"
 #include "refx/resource/sampler.h"
 #include "render_targets.h"
@@ -166,6 +167,7 @@ void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
 
 void Device::setRenderState(RenderState s, uint32_t value) {
   if (s >= kRenderStateCount) fail("render state {} out of range", uint32_t(s));
+  requireImplementedState(StateClass::Render, s, value);
   state_.renderStates[s] = value;
 }
 
@@ -184,12 +186,14 @@ Vec4 Device::getClipPlane(int index) const {
 void Device::setTextureStageState(int stage, TextureStageState s, uint32_t value) {
   if (stage < 0 || stage >= kMaxTextureStages || s >= kTextureStageStateCount)
     fail("texture stage state {} of stage {} out of range", uint32_t(s), stage);
+  requireImplementedState(StateClass::TextureStage, s, value);
   state_.stageStates[stage][s] = value;
 }
 
 void Device::setSamplerState(int sampler, SamplerStateType s, uint32_t value) {
   if (sampler < 0 || sampler >= kMaxSamplers || s >= kSamplerStateCount)
     fail("sampler state {} of sampler {} out of range", uint32_t(s), sampler);
+  requireImplementedState(StateClass::Sampler, s, value);
   state_.samplerStates[sampler][s] = value;
 }
 

@@ -1,8 +1,15 @@
 // ValidateDevice for the shaders (their versions and constants against the profile,
 // and the version rules of the shader layer), the fixed-function texture cascade,
-// bound textures and the output merger. With a pixel shader bound the texture stage
-// cascade is not used and is not checked.
+// bound textures (their sizes, mipmaps and power-of-two shapes against TextureCaps)
+// and the sampler states of the samplers in use, the fixed-function
+// vertex limits (lights, vertex blending), clip planes, point size, raster states,
+// render targets and the output merger. With a pixel shader bound the texture stage
+// cascade is not used and is not checked. Every reason names the caps field (and
+// flag) that is missing.
+#include "validate.h"
+
 #include <algorithm>
+#include <bit>
 #include <optional>
 
 #include "refx/core/diagnostics.h"
@@ -17,6 +24,12 @@ using namespace d3d;
 
 namespace {
 
+// A caps bit with its flag name, for the reasons.
+struct CapBit {
+  uint32_t bit;
+  std::string_view name;
+};
+
 // D3DPMISCCAPS_* and D3DPTEXTURECAPS_* bits the checks below read.
 constexpr uint32_t kMiscTssArgTemp = 0x400;
 constexpr uint32_t kMiscBlendOp = 0x800;
@@ -24,6 +37,93 @@ constexpr uint32_t kMiscPerStageConstant = 0x8000;
 constexpr uint32_t kMiscSeparateAlphaBlend = 0x20000;
 constexpr uint32_t kTexCapsCubeMap = 0x800;
 constexpr uint32_t kTexCapsVolumeMap = 0x2000;
+constexpr uint32_t kTexCapsPow2 = 0x2;
+constexpr uint32_t kTexCapsNonPow2Conditional = 0x100;
+constexpr uint32_t kTexCapsProjected = 0x400;
+constexpr uint32_t kTexCapsCubeMapPow2 = 0x20000;
+constexpr uint32_t kTexCapsVolumeMapPow2 = 0x40000;
+constexpr CapBit kTexCapsMipMap{0x4000, "MIPMAP"};
+constexpr CapBit kTexCapsMipVolumeMap{0x8000, "MIPVOLUMEMAP"};
+constexpr CapBit kTexCapsMipCubeMap{0x10000, "MIPCUBEMAP"};
+constexpr uint32_t kMiscMaskZ = 0x2;
+constexpr uint32_t kMiscCullNone = 0x10;
+constexpr uint32_t kMiscCullCW = 0x20;
+constexpr uint32_t kMiscCullCCW = 0x40;
+constexpr uint32_t kMiscColorWriteEnable = 0x80;
+constexpr uint32_t kMiscIndependentWriteMasks = 0x4000;
+constexpr uint32_t kMiscMrtPostPixelShaderBlending = 0x80000;
+constexpr uint32_t kMiscMrtIndependentBitDepths = 0x40000;
+constexpr uint32_t kAddressIndependentUV = 0x10;
+
+// D3DPRASTERCAPS_* bits.
+constexpr CapBit kRasterDither{0x1, "DITHER"};
+constexpr CapBit kRasterZTest{0x10, "ZTEST"};
+constexpr CapBit kRasterFogVertex{0x80, "FOGVERTEX"};
+constexpr CapBit kRasterFogTable{0x100, "FOGTABLE"};
+constexpr CapBit kRasterMipMapLodBias{0x2000, "MIPMAPLODBIAS"};
+constexpr CapBit kRasterFogRange{0x10000, "FOGRANGE"};
+constexpr CapBit kRasterAnisotropy{0x20000, "ANISOTROPY"};
+constexpr CapBit kRasterWBuffer{0x40000, "WBUFFER"};
+constexpr CapBit kRasterScissorTest{0x1000000, "SCISSORTEST"};
+constexpr CapBit kRasterSlopeScaleDepthBias{0x2000000, "SLOPESCALEDEPTHBIAS"};
+constexpr CapBit kRasterDepthBias{0x4000000, "DEPTHBIAS"};
+
+// D3DTEXTUREFILTERTYPE and the D3DPTFILTERCAPS_* bit each needs as MIN and MAG filter.
+struct FilterCaps {
+  uint32_t filter;
+  CapBit min, mag;
+};
+constexpr FilterCaps kFilterCaps[] = {
+    {1, {0x100, "MINFPOINT"}, {0x1000000, "MAGFPOINT"}},
+    {2, {0x200, "MINFLINEAR"}, {0x2000000, "MAGFLINEAR"}},
+    {3, {0x400, "MINFANISOTROPIC"}, {0x4000000, "MAGFANISOTROPIC"}},
+    {6, {0x800, "MINFPYRAMIDALQUAD"}, {0x8000000, "MAGFPYRAMIDALQUAD"}},
+    {7, {0x1000, "MINFGAUSSIANQUAD"}, {0x10000000, "MAGFGAUSSIANQUAD"}},
+    {8, {0x40000, "CONVOLUTIONMONO"}, {0x40000, "CONVOLUTIONMONO"}},
+};
+constexpr uint32_t kFilterNone = 0, kFilterPoint = 1, kFilterLinear = 2, kFilterAnisotropic = 3;
+constexpr CapBit kMipFilterPoint{0x10000, "MIPFPOINT"};
+constexpr CapBit kMipFilterLinear{0x20000, "MIPFLINEAR"};
+
+// D3DTEXTUREADDRESS (WRAP 1 .. MIRRORONCE 5) -> D3DPTADDRESSCAPS_* bit.
+constexpr CapBit kAddressCaps[] = {
+    {0x1, "WRAP"}, {0x2, "MIRROR"}, {0x4, "CLAMP"}, {0x8, "BORDER"}, {0x20, "MIRRORONCE"}};
+
+// D3DVERTEXBLENDFLAGS
+constexpr uint32_t kVertexBlendDisable = 0, kVertexBlendTweening = 255,
+                   kVertexBlend0Weights = 256;
+
+// ps_1_x texture instructions that sample the texture of the stage their
+// destination register names (t# in 1.0-1.3, r# for texld in 1.4).
+bool samplesDestinationStage(shader::Opcode op) {
+  using shader::Opcode;
+  switch (op) {
+    case Opcode::Tex: case Opcode::TexBem: case Opcode::TexBemL: case Opcode::TexReg2AR:
+    case Opcode::TexReg2GB: case Opcode::TexReg2RGB: case Opcode::TexM3x2Tex:
+    case Opcode::TexM3x3Tex: case Opcode::TexM3x3Spec: case Opcode::TexM3x3VSpec:
+    case Opcode::TexDP3Tex:
+      return true;
+    default: return false;
+  }
+}
+
+// Bit n: sampler register s#n is declared or read (ps_2_0+, vs_3_0), or texture
+// stage n is sampled (ps_1_x).
+uint32_t shaderSamplers(const ShaderObject& sh) {
+  uint32_t used = 0;
+  const bool ps1 = sh.version().isPixel() && sh.version().major < 2;
+  for (const shader::Instruction& in : sh.decoded().instructions) {
+    if (ps1) {
+      if (samplesDestinationStage(in.opcode) && in.dst.index < 32) used |= 1u << in.dst.index;
+      continue;
+    }
+    if (in.dst.type == shader::RegType::Sampler && in.dst.index < 32) used |= 1u << in.dst.index;
+    for (int i = 0; i < in.srcCount; ++i)
+      if (in.src[i].type == shader::RegType::Sampler && in.src[i].index < 32)
+        used |= 1u << in.src[i].index;
+  }
+  return used;
+}
 
 std::string nameOr(EnumKind kind, uint32_t value) {
   std::string_view n = enumName(kind, value);
@@ -60,12 +160,15 @@ OpUse opUse(uint32_t op) {
   }
 }
 
+bool isPow2(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
 bool validOp(uint32_t op) { return op >= TOP_DISABLE && op <= TOP_LERP; }
 uint32_t opCapsBit(uint32_t op) { return 1u << (op - 1); }
 
 class Validator {
  public:
-  Validator(const DeviceState& state, const CapsProfile& caps) : s_(state), caps_(caps) {}
+  Validator(const DeviceState& state, const CapsProfile& caps, const RenderTargetBinding& targets)
+      : s_(state), caps_(caps), targets_(targets) {}
 
   std::optional<std::string> run() {
     if (s_.vertexShader)
@@ -82,15 +185,27 @@ class Validator {
     if (!s_.pixelShader)
       if (auto r = stages()) return r;
     if (auto r = textures()) return r;
+    if (auto r = samplers()) return r;
+    if (!s_.vertexShader)
+      if (auto r = fixedFunctionVertex()) return r;
+    if (auto r = clipPlanesAndPoints()) return r;
+    if (auto r = raster()) return r;
     if (auto r = blending()) return r;
+    if (auto r = renderTargets()) return r;
     return std::nullopt;
   }
 
  private:
   const DeviceState& s_;
   const CapsProfile& caps_;
+  const RenderTargetBinding& targets_;
+  uint32_t stagesSampled_ = 0;  // fixed function: bit n = stage n reads its texture
 
   bool misc(uint32_t bit) const { return (caps_.primitiveMiscCaps & bit) != 0; }
+  bool rasterCap(CapBit cap) const { return (caps_.rasterCaps & cap.bit) != 0; }
+  std::string needsRaster(std::string_view what, CapBit cap) const {
+    return fmt::format("{} needs {} in RasterCaps of {}", what, cap.name, caps_.name);
+  }
 
   // "pixel shader ps_1_4 needs PixelShaderVersion 1.4; dx8 has 1.1"
   std::optional<std::string> shaderProgram(const ShaderObject& sh, uint32_t capsVersion) {
@@ -154,6 +269,12 @@ class Validator {
         return fmt::format("stage {} RESULTARG TEMP needs TSSARGTEMP in PrimitiveMiscCaps of {}",
                            n, caps_.name);
       // Fixed function: stage n samples the texture bound to sampler n.
+      if (usesTexture) stagesSampled_ |= 1u << n;
+      if (usesTexture && (s_.tss(n, TSS_TEXTURETRANSFORMFLAGS) & TTFF_PROJECTED) &&
+          !(caps_.textureCaps & kTexCapsProjected))
+        return fmt::format("stage {} TEXTURETRANSFORMFLAGS PROJECTED needs PROJECTED in "
+                           "TextureCaps of {}",
+                           n, caps_.name);
       if (usesTexture && ++texturesUsed > caps_.maxSimultaneousTextures)
         return fmt::format(
             "stage {} is stage number {} to use a texture but {} has MaxSimultaneousTextures {}",
@@ -236,6 +357,260 @@ class Validator {
     return std::nullopt;
   }
 
+  // Samplers the active stages or shaders read: fixed-function stages (a PREMODULATE
+  // or bump stage's successor reads its texture through its arguments), the pixel
+  // shader's samplers, and vs_3_0's vertex samplers.
+  uint32_t samplersInUse() const {
+    uint32_t used = s_.pixelShader ? shaderSamplers(*s_.pixelShader) : stagesSampled_;
+    used &= (1u << kMaxPixelSamplers) - 1;
+    if (s_.vertexShader && s_.vertexShader->version().atLeast(3, 0))
+      used |= (shaderSamplers(*s_.vertexShader) & 0xf) << kVertexSampler0;
+    return used;
+  }
+
+  // "sampler 0 MINFILTER ANISOTROPIC needs MINFANISOTROPIC in TextureFilterCaps of dx6-tnt2"
+  std::optional<std::string> samplers() {
+    const uint32_t used = samplersInUse();
+    for (int i = 0; i < kMaxSamplers; ++i) {
+      const TexturePtr& tex = s_.textures[i];
+      if (!tex || !(used & (1u << i))) continue;
+      const bool vertex = i >= kVertexSampler0;
+      const std::string sampler = vertex ? fmt::format("vertex sampler {}", i - kVertexSampler0)
+                                         : fmt::format("sampler {}", i);
+      uint32_t filterCaps = caps_.textureFilterCaps;
+      std::string_view field = "TextureFilterCaps";
+      if (vertex) {
+        filterCaps = caps_.vertexTextureFilterCaps;
+        field = "VertexTextureFilterCaps";
+      } else if (tex->type() == TextureType::Cube) {
+        filterCaps = caps_.cubeTextureFilterCaps;
+        field = "CubeTextureFilterCaps";
+      } else if (tex->type() == TextureType::Volume) {
+        filterCaps = caps_.volumeTextureFilterCaps;
+        field = "VolumeTextureFilterCaps";
+      }
+      for (SamplerStateType state : {SAMP_MINFILTER, SAMP_MAGFILTER}) {
+        const uint32_t filter = s_.samp(i, state);
+        if (filter == kFilterNone) continue;  // sampled as POINT
+        const FilterCaps* row = nullptr;
+        for (const FilterCaps& f : kFilterCaps)
+          if (f.filter == filter) row = &f;
+        const std::string stateName = nameOr(EnumKind::SamplerState, state);
+        if (!row)
+          return fmt::format("{} {} {} is not a D3DTEXTUREFILTERTYPE", sampler, stateName, filter);
+        const CapBit need = state == SAMP_MINFILTER ? row->min : row->mag;
+        if (!(filterCaps & need.bit))
+          return fmt::format("{} {} {} needs {} in {} of {}", sampler, stateName,
+                             nameOr(EnumKind::TextureFilter, filter), need.name, field,
+                             caps_.name);
+      }
+      const uint32_t mip = s_.samp(i, SAMP_MIPFILTER);
+      if (mip != kFilterNone) {
+        if (mip != kFilterPoint && mip != kFilterLinear)
+          return fmt::format("{} MIPFILTER {} is not a mip filter (NONE, POINT or LINEAR)",
+                             sampler, nameOr(EnumKind::TextureFilter, mip));
+        const CapBit need = mip == kFilterPoint ? kMipFilterPoint : kMipFilterLinear;
+        if (!(filterCaps & need.bit))
+          return fmt::format("{} MIPFILTER {} needs {} in {} of {}", sampler,
+                             nameOr(EnumKind::TextureFilter, mip), need.name, field, caps_.name);
+      }
+      if (s_.samp(i, SAMP_MINFILTER) == kFilterAnisotropic ||
+          s_.samp(i, SAMP_MAGFILTER) == kFilterAnisotropic) {
+        if (!rasterCap(kRasterAnisotropy))
+          return needsRaster(sampler + " ANISOTROPIC filtering", kRasterAnisotropy);
+        const uint32_t maxAniso = s_.samp(i, SAMP_MAXANISOTROPY);
+        if (maxAniso > caps_.maxAnisotropy)
+          return fmt::format("{} MAXANISOTROPY {} exceeds MaxAnisotropy {} of {}", sampler,
+                             maxAniso, caps_.maxAnisotropy, caps_.name);
+      }
+      if (bitsFloat(s_.samp(i, SAMP_MIPMAPLODBIAS)) != 0.0f && !rasterCap(kRasterMipMapLodBias))
+        return needsRaster(fmt::format("{} MIPMAPLODBIAS {}", sampler,
+                                       bitsFloat(s_.samp(i, SAMP_MIPMAPLODBIAS))),
+                           kRasterMipMapLodBias);
+      if (auto r = addressing(i, sampler, tex->type() == TextureType::Volume)) return r;
+      if (auto r = textureShape(i, sampler, *tex)) return r;
+    }
+    return std::nullopt;
+  }
+
+  // Mipmaps and power-of-two sizes against TextureCaps.
+  std::optional<std::string> textureShape(int i, const std::string& sampler, const Texture& tex) {
+    const bool mipmapped = tex.levelCount() > 1 && s_.samp(i, SAMP_MIPFILTER) != kFilterNone;
+    const CapBit mipCap = tex.type() == TextureType::Cube     ? kTexCapsMipCubeMap
+                          : tex.type() == TextureType::Volume ? kTexCapsMipVolumeMap
+                                                              : kTexCapsMipMap;
+    if (mipmapped && !(caps_.textureCaps & mipCap.bit))
+      return fmt::format("{} mipmapped texture ({} levels, MIPFILTER {}) needs {} in TextureCaps "
+                         "of {}",
+                         sampler, tex.levelCount(),
+                         nameOr(EnumKind::TextureFilter, s_.samp(i, SAMP_MIPFILTER)),
+                         mipCap.name, caps_.name);
+    const bool pow2 = isPow2(tex.width()) && isPow2(tex.height()) &&
+                      (tex.type() != TextureType::Volume || isPow2(tex.depth()));
+    if (pow2) return std::nullopt;
+    if (tex.type() == TextureType::Cube && (caps_.textureCaps & kTexCapsCubeMapPow2))
+      return fmt::format("{} cube texture is {} texels wide but {} has CUBEMAP_POW2 in TextureCaps",
+                         sampler, tex.width(), caps_.name);
+    if (tex.type() == TextureType::Volume && (caps_.textureCaps & kTexCapsVolumeMapPow2))
+      return fmt::format("{} volume texture is {}x{}x{} but {} has VOLUMEMAP_POW2 in TextureCaps",
+                         sampler, tex.width(), tex.height(), tex.depth(), caps_.name);
+    if (tex.type() != TextureType::Texture2D || !(caps_.textureCaps & kTexCapsPow2))
+      return std::nullopt;
+    const std::string size = fmt::format("{} texture is {}x{}", sampler, tex.width(), tex.height());
+    if (!(caps_.textureCaps & kTexCapsNonPow2Conditional))
+      return fmt::format("{} but {} has POW2 in TextureCaps", size, caps_.name);
+    // NONPOW2CONDITIONAL: other sizes only clamped and without mipmaps.
+    if (s_.samp(i, SAMP_ADDRESSU) != 3 || s_.samp(i, SAMP_ADDRESSV) != 3)
+      return fmt::format("{}: with POW2 and NONPOW2CONDITIONAL in TextureCaps of {} it must be "
+                         "addressed with CLAMP",
+                         size, caps_.name);
+    if (mipmapped)
+      return fmt::format("{}: with POW2 and NONPOW2CONDITIONAL in TextureCaps of {} it cannot be "
+                         "mipmapped",
+                         size, caps_.name);
+    return std::nullopt;
+  }
+
+  std::optional<std::string> addressing(int i, const std::string& sampler, bool volume) {
+    const SamplerStateType states[] = {SAMP_ADDRESSU, SAMP_ADDRESSV, SAMP_ADDRESSW};
+    for (int k = 0; k < (volume ? 3 : 2); ++k) {
+      const uint32_t mode = s_.samp(i, states[k]);
+      const std::string stateName = nameOr(EnumKind::SamplerState, states[k]);
+      if (mode < 1 || mode > 5)
+        return fmt::format("{} {} {} is not a D3DTEXTUREADDRESS", sampler, stateName, mode);
+      const CapBit need = kAddressCaps[mode - 1];
+      if (!(caps_.textureAddressCaps & need.bit))
+        return fmt::format("{} {} {} needs {} in TextureAddressCaps of {}", sampler, stateName,
+                           need.name, need.name, caps_.name);
+    }
+    if (s_.samp(i, SAMP_ADDRESSU) != s_.samp(i, SAMP_ADDRESSV) &&
+        !(caps_.textureAddressCaps & kAddressIndependentUV))
+      return fmt::format("{} ADDRESSU {} and ADDRESSV {} differ: needs INDEPENDENTUV in "
+                         "TextureAddressCaps of {}",
+                         sampler, nameOr(EnumKind::TextureAddress, s_.samp(i, SAMP_ADDRESSU)),
+                         nameOr(EnumKind::TextureAddress, s_.samp(i, SAMP_ADDRESSV)), caps_.name);
+    return std::nullopt;
+  }
+
+  // Fixed-function vertex processing: lights and vertex blending.
+  std::optional<std::string> fixedFunctionVertex() {
+    if (s_.rs(RS_LIGHTING)) {
+      const auto lights = uint32_t(std::count(s_.lightEnabled.begin(), s_.lightEnabled.end(), true));
+      if (lights > caps_.maxActiveLights)
+        return fmt::format("{} lights are enabled with LIGHTING but {} has MaxActiveLights {}",
+                           lights, caps_.name, caps_.maxActiveLights);
+    }
+    const uint32_t blend = s_.rs(RS_VERTEXBLEND);
+    if (blend != kVertexBlendDisable && blend != kVertexBlendTweening) {
+      // nWEIGHTS blends n+1 matrices; 0WEIGHTS one (useful with indices only).
+      const uint32_t matrices = blend == kVertexBlend0Weights ? 1 : blend + 1;
+      if (blend > 3 && blend != kVertexBlend0Weights)
+        return fmt::format("VERTEXBLEND {} is not a D3DVERTEXBLENDFLAGS", blend);
+      if (matrices > caps_.maxVertexBlendMatrices)
+        return fmt::format("VERTEXBLEND {}WEIGHTS blends {} matrices but {} has "
+                           "MaxVertexBlendMatrices {}",
+                           blend == kVertexBlend0Weights ? 0 : blend, matrices, caps_.name,
+                           caps_.maxVertexBlendMatrices);
+    }
+    if (s_.rs(RS_INDEXEDVERTEXBLENDENABLE) && caps_.maxVertexBlendMatrixIndex == 0)
+      return fmt::format("INDEXEDVERTEXBLENDENABLE needs MaxVertexBlendMatrixIndex above 0; {} "
+                         "has 0",
+                         caps_.name);
+    return std::nullopt;
+  }
+
+  std::optional<std::string> clipPlanesAndPoints() {
+    if (const uint32_t planes = s_.rs(RS_CLIPPLANEENABLE)) {
+      const int highest = 31 - std::countl_zero(planes);
+      if (uint32_t(highest) >= caps_.maxUserClipPlanes)
+        return fmt::format("CLIPPLANEENABLE 0x{:x} enables plane {} but {} has "
+                           "MaxUserClipPlanes {}",
+                           planes, highest, caps_.name, caps_.maxUserClipPlanes);
+    }
+    const float size = s_.rsFloat(RS_POINTSIZE);
+    if (size > caps_.maxPointSize)
+      return fmt::format("POINTSIZE {} exceeds MaxPointSize {} of {}", size, caps_.maxPointSize,
+                         caps_.name);
+    return std::nullopt;
+  }
+
+  // Raster and output-merger states that need a RasterCaps / PrimitiveMiscCaps flag.
+  std::optional<std::string> raster() {
+    const uint32_t z = s_.rs(RS_ZENABLE);
+    if (z != ZB_FALSE && !rasterCap(kRasterZTest))
+      return needsRaster(fmt::format("ZENABLE {}", nameOr(EnumKind::ZBufferType, z)),
+                         kRasterZTest);
+    if (z == ZB_USEW && !rasterCap(kRasterWBuffer))
+      return needsRaster("ZENABLE USEW", kRasterWBuffer);
+    if (!s_.rs(RS_ZWRITEENABLE) && !misc(kMiscMaskZ))
+      return fmt::format("ZWRITEENABLE FALSE needs MASKZ in PrimitiveMiscCaps of {}", caps_.name);
+    const uint32_t cull = s_.rs(RS_CULLMODE);
+    const uint32_t cullBit = cull == CULL_NONE ? kMiscCullNone
+                             : cull == CULL_CW ? kMiscCullCW
+                             : cull == CULL_CCW ? kMiscCullCCW : 0;
+    if (cullBit && !misc(cullBit))
+      return fmt::format("CULLMODE {} needs CULL{} in PrimitiveMiscCaps of {}",
+                         nameOr(EnumKind::Cull, cull), nameOr(EnumKind::Cull, cull), caps_.name);
+    if ((s_.rs(RS_COLORWRITEENABLE) & 0xf) != 0xf && !misc(kMiscColorWriteEnable))
+      return fmt::format("COLORWRITEENABLE 0x{:x} needs COLORWRITEENABLE in PrimitiveMiscCaps of {}",
+                         s_.rs(RS_COLORWRITEENABLE), caps_.name);
+    if (s_.rs(RS_SCISSORTESTENABLE) && !rasterCap(kRasterScissorTest))
+      return needsRaster("SCISSORTESTENABLE", kRasterScissorTest);
+    if (s_.rsFloat(RS_DEPTHBIAS) != 0.0f && !rasterCap(kRasterDepthBias))
+      return needsRaster(fmt::format("DEPTHBIAS {}", s_.rsFloat(RS_DEPTHBIAS)), kRasterDepthBias);
+    if (s_.rsFloat(RS_SLOPESCALEDEPTHBIAS) != 0.0f && !rasterCap(kRasterSlopeScaleDepthBias))
+      return needsRaster(fmt::format("SLOPESCALEDEPTHBIAS {}", s_.rsFloat(RS_SLOPESCALEDEPTHBIAS)),
+                         kRasterSlopeScaleDepthBias);
+    if (s_.rs(RS_DITHERENABLE) && !rasterCap(kRasterDither))
+      return needsRaster("DITHERENABLE", kRasterDither);
+    return fog();
+  }
+
+  // ps_3_0 does its own fog; otherwise FOGTABLEMODE picks pixel fog, else the vertex
+  // fog factor (computed by FOGVERTEXMODE or passed from the vertex) is interpolated.
+  std::optional<std::string> fog() {
+    if (!s_.rs(RS_FOGENABLE)) return std::nullopt;
+    if (s_.pixelShader && s_.pixelShader->version().atLeast(3, 0)) return std::nullopt;
+    const uint32_t table = s_.rs(RS_FOGTABLEMODE);
+    if (table != FOG_NONE) {
+      if (!rasterCap(kRasterFogTable))
+        return needsRaster(fmt::format("FOGTABLEMODE {}", nameOr(EnumKind::FogMode, table)),
+                           kRasterFogTable);
+      return std::nullopt;
+    }
+    if (!rasterCap(kRasterFogVertex))
+      return needsRaster("FOGENABLE with FOGTABLEMODE NONE (vertex fog)", kRasterFogVertex);
+    const bool computed = !s_.vertexShader && s_.rs(RS_FOGVERTEXMODE) != FOG_NONE;
+    if (computed && s_.rs(RS_RANGEFOGENABLE) && !rasterCap(kRasterFogRange))
+      return needsRaster("RANGEFOGENABLE", kRasterFogRange);
+    return std::nullopt;
+  }
+
+  // Render targets 1-3 (D3D9's multiple render targets).
+  std::optional<std::string> renderTargets() {
+    const int count = targets_.count;
+    if (count <= 1) return std::nullopt;
+    if (uint32_t(count) > caps_.maxSimultaneousRenderTargets)
+      return fmt::format("{} render targets are bound but {} has NumSimultaneousRTs {}", count,
+                         caps_.name, caps_.maxSimultaneousRenderTargets);
+    if (targets_.formatsDiffer && !misc(kMiscMrtIndependentBitDepths))
+      return fmt::format("render targets of different formats need MRTINDEPENDENTBITDEPTHS in "
+                         "PrimitiveMiscCaps of {}",
+                         caps_.name);
+    const RenderState masks[] = {RS_COLORWRITEENABLE1, RS_COLORWRITEENABLE2,
+                                 RS_COLORWRITEENABLE3};
+    for (int t = 1; t < count && t < 4; ++t)
+      if (s_.rs(masks[t - 1]) != s_.rs(RS_COLORWRITEENABLE) && !misc(kMiscIndependentWriteMasks))
+        return fmt::format("{} differs from COLORWRITEENABLE: needs INDEPENDENTWRITEMASKS in "
+                           "PrimitiveMiscCaps of {}",
+                           renderStateName(masks[t - 1]), caps_.name);
+    if (s_.rs(RS_ALPHABLENDENABLE) && !misc(kMiscMrtPostPixelShaderBlending))
+      return fmt::format("ALPHABLENDENABLE with {} render targets needs "
+                         "MRTPOSTPIXELSHADERBLENDING in PrimitiveMiscCaps of {}",
+                         count, caps_.name);
+    return std::nullopt;
+  }
+
   // D3DPBLENDCAPS_x is bit (D3DBLEND_x - 1); INVBLENDFACTOR shares the BLENDFACTOR bit.
   std::optional<std::string> blendFactor(RenderState state, uint32_t caps,
                                          std::string_view capsName) {
@@ -283,8 +658,16 @@ class Validator {
 }  // namespace
 
 ValidationResult validateDeviceState(const DeviceState& state, const CapsProfile& caps) {
+  // DeviceState holds no render targets, so this form sees render target 0 alone.
+  // Device::validate should pass the targets it binds (Device::setRenderTarget(index,
+  // texture)) to the form below once it has more than one.
+  return validateDeviceState(state, caps, RenderTargetBinding{});
+}
+
+ValidationResult validateDeviceState(const DeviceState& state, const CapsProfile& caps,
+                                     const RenderTargetBinding& targets) {
   ValidationResult result;
-  if (auto reason = Validator(state, caps).run()) {
+  if (auto reason = Validator(state, caps, targets).run()) {
     result.ok = false;
     result.passes = 0;
     result.reason = std::move(*reason);
