@@ -1340,7 +1340,13 @@ void Validator::checkOutputs(const Instruction& in) {
   if (v_.major == 2) {
     const SrcParam& s = in.src[0];
     if (in.opcode != O::Mov) error(in, "{} is written only by mov in {}", n, name_);
-    else if (s.swizzle != kIdentity || s.mod != SrcMod::None)
+    // oDepth takes one component, which a replicate swizzle (.x .y .z .w) may select
+    // (fxc emits mov oDepth, r0.x); other swizzles stay rejected, as for oCn.
+    else if (d.type == R::DepthOut && (s.mod != SrcMod::None ||
+                                       (s.swizzle != kIdentity && !isReplicate(s.swizzle))))
+      error(in, "mov to {} takes no source modifier and no swizzle but .x .y .z .w in {}", n,
+            name_);
+    else if (d.type == R::ColorOut && (s.swizzle != kIdentity || s.mod != SrcMod::None))
       error(in, "mov to {} takes no source swizzle or modifier in {}", n, name_);
     if (d.type == R::ColorOut && d.writeMask != 0xF) error(in, "{} is written with the full mask in {}", n, name_);
     if (d.resultMod & ResultSaturate) error(in, "{} cannot be written with _sat in {}", n, name_);
