@@ -1360,6 +1360,12 @@ void Validator::checkOutputs(const Instruction& in) {
   } else {
     if (dynamicFlow || in.predicated)
       error(in, "{} cannot be written inside dynamic flow control or predicated", n);
+    // ps_3_0 writes outputs with any instruction; a mov to oDepth still selects one
+    // component, so its swizzle is a replicate (or none, which reads .x).
+    const uint8_t sw = in.src[0].swizzle;
+    if (d.type == R::DepthOut && in.opcode == O::Mov && in.srcCount > 0 && sw != kIdentity &&
+        !isReplicate(sw))
+      error(in, "mov to {} takes no swizzle but .x .y .z .w in {}", n, name_);
     if (d.type == R::ColorOut) colorOutWritten_.insert(d.index);
     else depthWritten_ = true;
   }

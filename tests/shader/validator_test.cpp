@@ -998,6 +998,11 @@ TEST(ValidatorPs20, DepthOutputSwizzle) {
   }
   EXPECT_TRUE(isValid("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0.x"));
   EXPECT_TRUE(isValid("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0.w"));
+  EXPECT_TRUE(isValid("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0"));
+  EXPECT_TRUE(hasError("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0.xy",
+                       "mov to oDepth takes no swizzle but .x .y .z .w in ps_3_0"));
+  EXPECT_TRUE(hasError("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0.yx",
+                       "mov to oDepth takes no swizzle but .x .y .z .w in ps_3_0"));
 }
 
 TEST(ValidatorPs20, FlowControlAvailability) {
