@@ -969,7 +969,12 @@ AnisoProbes anisoProbes(const Footprint& fp, const SamplerState& st, const Sampl
 
 // λ' = λ - log2 N.
 inline float anisoLambda(float lam, int count) {
-  return count == 1 ? lam : lam - std::log2(float(count));
+  static const std::array<float, kMaxAnisotropy + 1> log2N = [] {
+    std::array<float, kMaxAnisotropy + 1> t{};
+    for (uint32_t n = 1; n <= kMaxAnisotropy; ++n) t[n] = std::log2(float(n));
+    return t;
+  }();
+  return count == 1 ? lam : lam - log2N[size_t(count)];
 }
 
 // Offset of probe i of n along the axis, in axis lengths: the centre of the i-th of n
@@ -1027,17 +1032,36 @@ void sampleAnisoBatched(const Texture& tex, const SamplerState& st, const Sample
                         float out[4][kLanes]) {
   const Footprint fp(tex);
   const bool cube = tex.type() == TextureType::Cube;
-  AnisoProbes probes[kLanes];
+  const int dims = cube ? 3 : 2;  // a 2D probe's w is never read
+  // Per lane, as rows: N (0 for lanes not sampled here) and the axis.
+  int count[kLanes] = {};
+  float axis[3][kLanes] = {};
   float lamA[kLanes];
+  const bool perQuad = req.lodMode == LodMode::Derivatives || req.lodMode == LodMode::Bias;
   int maxCount = 1;
   for (int l = 0; l < kLanes; ++l) {
-    if (lanes >> l & 1) probes[l] = anisoProbes(fp, st, req, c, l);
-    lamA[l] = anisoLambda(lam[l], probes[l].count);
-    maxCount = std::max(maxCount, probes[l].count);
+    if (!(lanes >> l & 1)) {
+      lamA[l] = lam[l];
+      continue;
+    }
+    // Quad derivatives: the probes depend on the quad alone, so its lanes share them.
+    const int from = perQuad ? l & ~3 : l;
+    if (from != l && (lanes >> from & 1)) {
+      count[l] = count[from];
+      for (int k = 0; k < 3; ++k) axis[k][l] = axis[k][from];
+    } else {
+      const AnisoProbes p = anisoProbes(fp, st, req, c, l);
+      count[l] = p.count;
+      for (int k = 0; k < 3; ++k) axis[k][l] = p.axis[k];
+    }
+    lamA[l] = anisoLambda(lam[l], count[l]);
+    maxCount = std::max(maxCount, count[l]);
   }
   LanePlan plan;
   planLevels(tex, st, lamA, plan);
   for (int l = 0; l < kLanes; ++l) plan.linear[l] = 1;
+  uint32_t blendLanes = 0;
+  for (int l = 0; l < kLanes; ++l) blendLanes |= uint32_t(plan.mipFrac[l] > 0) << l;
 
   TextureAddress addr[3] = {validAddress(st.addressU), validAddress(st.addressV),
                             validAddress(st.addressW)};
@@ -1045,12 +1069,17 @@ void sampleAnisoBatched(const Texture& tex, const SamplerState& st, const Sample
   float sum[4][kLanes] = {};
   for (int i = 0; i < maxCount; ++i) {
     uint32_t todo = 0;
-    for (int l = 0; l < kLanes; ++l) todo |= uint32_t(probes[l].count > i) << l;
-    todo &= lanes;
+    for (int l = 0; l < kLanes; ++l) todo |= uint32_t(count[l] > i) << l;
+    // Probe i's coordinates: probeCoord's operations, lanes not sampled keep c.
     float p[3][kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      const int n = count[l] > 1 ? count[l] : 1;
+      const float t = probeOffset(i, n);
+      const bool moved = count[l] > 1 && count[l] > i;
+      for (int k = 0; k < dims; ++k) p[k][l] = moved ? c[k][l] + t * axis[k][l] : c[k][l];
+    }
+    if (!cube) std::memcpy(p[2], c[2], sizeof p[2]);
     int face[kLanes] = {};
-    for (int l = 0; l < kLanes; ++l)
-      for (int k = 0; k < 3; ++k) p[k][l] = todo >> l & 1 ? probeCoord(c, probes[l], k, l, i) : c[k][l];
     if (cube)
       for (int l = 0; l < kLanes; ++l) {
         const float d[3] = {p[0][l], p[1][l], p[2][l]};
@@ -1059,9 +1088,7 @@ void sampleAnisoBatched(const Texture& tex, const SamplerState& st, const Sample
       }
     float s[4][kLanes];
     samplePass(tex, st, plan, 0, todo, face, p[0], p[1], p[2], addr, true, s);
-    uint32_t blend = 0;
-    for (int l = 0; l < kLanes; ++l) blend |= uint32_t(plan.mipFrac[l] > 0) << l;
-    blend &= todo;
+    const uint32_t blend = blendLanes & todo;
     if (blend) {
       float second[4][kLanes];
       samplePass(tex, st, plan, 1, blend, face, p[0], p[1], p[2], addr, true, second);
@@ -1075,7 +1102,7 @@ void sampleAnisoBatched(const Texture& tex, const SamplerState& st, const Sample
   }
   for (int ch = 0; ch < 4; ++ch)
     for (int l = 0; l < kLanes; ++l)
-      if (lanes >> l & 1) out[ch][l] = sum[ch][l] / float(probes[l].count);
+      if (lanes >> l & 1) out[ch][l] = sum[ch][l] / float(count[l]);
 }
 
 // What the one-level 2D path needs to know about a texture and sampler state
@@ -1239,6 +1266,11 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
       (allowFast ? sampleAnisoBatched : sampleAnisoReference)(tex, st, req, c, lam, anisoLanes,
                                                               anisoOut);
       mask &= ~anisoLanes;
+      if (!mask) {  // every lane anisotropic
+        for (int ch = 0; ch < 4; ++ch) std::memcpy(out[ch], anisoOut[ch], sizeof out[ch]);
+        if (req.laneMask != 0xffff) clearLanes(out, req.laneMask);
+        return;
+      }
     }
   }
 
