@@ -242,5 +242,35 @@ TEST(SamplerAnisotropic, CubeLevelFromTheFootprint) {
   }
 }
 
+// Volume textures do not claim anisotropic filtering (no VolumeTextureFilterCaps bit):
+// ANISOTROPIC samples them as LINEAR, whatever MAXANISOTROPY.
+TEST(SamplerAnisotropic, VolumeTexturesFilterAsLinear) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  auto tex = Texture::createVolume(Format::A8R8G8B8, 16, 8, 4, 0);
+  fillRandom(*tex, rng);
+  for (int iter = 0; iter < 200; ++iter) {
+    SamplerState aniso, linear;
+    linear.minFilter = linear.magFilter = TextureFilter::Linear;
+    aniso.minFilter = aniso.magFilter = TextureFilter::Anisotropic;
+    aniso.maxAnisotropy = 16;
+    aniso.mipFilter = linear.mipFilter = TextureFilter(rng() % 3);
+    alignas(64) float c[3][N];
+    for (int l = 0; l < N; ++l) {  // 8:1 stretched quads
+      c[0][l] = unit(rng) + 0.5f * float(l & 1);
+      c[1][l] = unit(rng) + 0.0625f * float((l >> 1) & 1);
+      c[2][l] = unit(rng);
+    }
+    SampleRequest req;
+    req.u = c[0], req.v = c[1], req.w = c[2];
+    float a[4][N], b[4][N], r[4][N];
+    sampleTexture(*tex, aniso, req, a);
+    sampleTexture(*tex, linear, req, b);
+    sampleTextureReference(*tex, aniso, req, r);
+    ASSERT_EQ(std::memcmp(a, b, sizeof a), 0) << "iter " << iter;
+    ASSERT_EQ(std::memcmp(r, b, sizeof r), 0) << "iter " << iter;
+  }
+}
+
 }  // namespace
 }  // namespace refx
