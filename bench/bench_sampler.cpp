@@ -29,7 +29,9 @@ TexturePtr makeTexture(int levels) {
 // them over: 4x4 blocks of four 2x2 quads, lane = quad*4 + (y&1)*2 + (x&1).
 struct Coords {
   std::vector<float> u, v;
-  Coords(float step, bool scattered) {
+  // stretch: x (across) covers `stretch` times as many texels as y (an anisotropic
+  // footprint of stretch:1).
+  Coords(float step, bool scattered, float stretch = 1.0f) {
     const int blocks = 64 * 64;
     u.resize(blocks * kBatchLanes), v.resize(blocks * kBatchLanes);
     const float c = std::cos(0.3f) * step / 256.0f, s = std::sin(0.3f) * step / 256.0f;
@@ -42,7 +44,8 @@ struct Coords {
         const int q = lane / 4;
         const int x = (b % 64) * 4 + (q & 1) * 2 + (lane & 1);
         const int y = (b / 64) * 4 + (q >> 1) * 2 + ((lane >> 1) & 1);
-        const float px = scattered ? float(x % 4) : float(x), py = scattered ? float(y % 4) : float(y);
+        const float px = (scattered ? float(x % 4) : float(x)) * stretch;
+        const float py = scattered ? float(y % 4) : float(y);
         u[b * kBatchLanes + lane] = u0 + px * c - py * s;
         v[b * kBatchLanes + lane] = v0 + px * s + py * c;
       }
@@ -53,8 +56,9 @@ struct Coords {
 
 // Samples batch after batch with sample(req, out) (sampleTexture or a prepared sampler).
 template <class Sample>
-void runWith(benchmark::State& state, float step, bool scattered, Sample sample) {
-  Coords c(step, scattered);
+void runWith(benchmark::State& state, float step, bool scattered, Sample sample,
+             float stretch = 1.0f) {
+  Coords c(step, scattered, stretch);
   float out[4][kBatchLanes];
   int64_t samples = 0;
   int b = 0;
@@ -141,5 +145,31 @@ void BM_BilinearRGBA8Border(benchmark::State& state) {
   run(state, *tex, ss, 1.0f);
 }
 BENCHMARK(BM_BilinearRGBA8Border);
+
+// ANISOTROPIC, MAXANISOTROPY 4, trilinear probes: a 4:1 footprint (4 texels across,
+// 1 down) gives N = 4 probes per sample at λ = log2(4/4) = 0 (levels 0 and 1 blended
+// where rounding leaves λ above 0).
+void BM_AnisotropicRGBA8(benchmark::State& state) {
+  auto tex = makeTexture(0);
+  SamplerState ss;
+  ss.magFilter = ss.minFilter = TextureFilter::Anisotropic;
+  ss.mipFilter = TextureFilter::Linear;
+  ss.maxAnisotropy = 4;
+  runWith(state, 1.0f, false,
+          [&](const SampleRequest& req, float (*out)[kBatchLanes]) { sampleTexture(*tex, ss, req, out); },
+          4.0f);
+}
+BENCHMARK(BM_AnisotropicRGBA8);
+
+// The same footprint through LINEAR (one trilinear sample at λ = 2), for comparison.
+void BM_TrilinearRGBA8Stretched(benchmark::State& state) {
+  auto tex = makeTexture(0);
+  SamplerState ss;
+  ss.magFilter = ss.minFilter = ss.mipFilter = TextureFilter::Linear;
+  runWith(state, 1.0f, false,
+          [&](const SampleRequest& req, float (*out)[kBatchLanes]) { sampleTexture(*tex, ss, req, out); },
+          4.0f);
+}
+BENCHMARK(BM_TrilinearRGBA8Stretched);
 
 }  // namespace

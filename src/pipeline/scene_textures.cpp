@@ -1,6 +1,7 @@
 // Texture generators of scene scripts (`texture NAME ... GEN`): level 0 of every face is
-// computed texel by texel as float colors, encoded in the texture's format, and the
-// smaller levels are box-filtered from it (mipcolors fills each level itself).
+// computed texel by texel as float colors, encoded in the texture's format (rounded as
+// scene-script.md states: floor(v·(2ⁿ−1) + 0.5), signed round(v·127) ties away from
+// zero), and the smaller levels are box-filtered from it (mipcolors fills each level itself).
 #include <cmath>
 #include <functional>
 
@@ -49,7 +50,7 @@ void fillLevel(Texture& tex, int face, int level, const TexelFn& fn) {
   for (int z = 0; z < d; ++z)
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) row[size_t(x)] = fn(face, x, y, z);
-      encodeRow(tex.format(), row.data(), w,
+      encodeRowExact(tex.format(), row.data(), w,
                 base + size_t(z) * tex.slicePitch(level) + size_t(y) * tex.rowPitch(level));
     }
 }

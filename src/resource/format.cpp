@@ -338,6 +338,35 @@ void decodeRow(Format f, const uint8_t* src, int count, Color4* out) {
   }
 }
 
+namespace {
+
+// Every field through encodeField (exact rounding, any layout).
+void encodeFields(Format f, const Color4* src, int count, uint8_t* out) {
+  const Layout* l = layoutOf(f);
+  const FormatInfo* info = formatInfo(f);
+  if (!l || !info) return;
+  int bpt = int(info->blockBytes);
+  // Each field takes the first shader component that reads it (L8: r, A8L8: r and a).
+  int source[4] = {-1, -1, -1, -1};
+  for (int k = 3; k >= 0; --k)
+    if (l->out[k] >= 0) source[l->out[k]] = k;
+  for (int i = 0; i < count; ++i, out += bpt) {
+    std::memset(out, 0, size_t(bpt));
+    for (int c = 0; c < 4; ++c) {
+      const Channel& ch = l->ch[c];
+      if (!ch.bits) continue;
+      float v = source[c] >= 0 ? component(src[i], source[c]) : 1.0f;
+      writeField(out, ch, encodeField(v, ch));
+    }
+  }
+}
+
+}  // namespace
+
+void encodeRowExact(Format f, const Color4* src, int count, uint8_t* out) {
+  encodeFields(f, src, count, out);
+}
+
 void encodeRow(Format f, const Color4* src, int count, uint8_t* out) {
   switch (f) {
     case Format::A8R8G8B8:
@@ -362,23 +391,7 @@ void encodeRow(Format f, const Color4* src, int count, uint8_t* out) {
       return;
     default: break;
   }
-  const Layout* l = layoutOf(f);
-  const FormatInfo* info = formatInfo(f);
-  if (!l || !info) return;
-  int bpt = int(info->blockBytes);
-  // Each field takes the first shader component that reads it (L8: r, A8L8: r and a).
-  int source[4] = {-1, -1, -1, -1};
-  for (int k = 3; k >= 0; --k)
-    if (l->out[k] >= 0) source[l->out[k]] = k;
-  for (int i = 0; i < count; ++i, out += bpt) {
-    std::memset(out, 0, size_t(bpt));
-    for (int c = 0; c < 4; ++c) {
-      const Channel& ch = l->ch[c];
-      if (!ch.bits) continue;
-      float v = source[c] >= 0 ? component(src[i], source[c]) : 1.0f;
-      writeField(out, ch, encodeField(v, ch));
-    }
-  }
+  encodeFields(f, src, count, out);
 }
 
 void decodeBlock(Format f, const uint8_t* block, Color4 out[16]) {

@@ -108,6 +108,14 @@ struct Footprint {
   // λ before bias: log2 ρ, ρ = the longer of the two derivative vectors (lane's own
   // coordinates c give the cube face the derivatives are projected on).
   float lod(const float* const c[3], int lane, const float dx[3], const float dy[3]) const {
+    float la, lb;
+    squaredLengths(c, lane, dx, dy, la, lb);
+    return 0.5f * std::log2(std::max(la, lb));  // log2 sqrt(ρ²)
+  }
+
+  // The squared lengths, in texels of level 0, of the derivative vectors dx and dy.
+  void squaredLengths(const float* const c[3], int lane, const float dx[3], const float dy[3],
+                      float& la, float& lb) const {
     float a[3], b[3];
     if (type == TextureType::Cube) {
       const float d[3] = {c[0][lane], c[1][lane], c[2][lane]};
@@ -121,9 +129,8 @@ struct Footprint {
       for (int i = 0; i < (type == TextureType::Volume ? 3 : 2); ++i)
         a[i] = dx[i] * size[i], b[i] = dy[i] * size[i];
     }
-    float la = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-    float lb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
-    return 0.5f * std::log2(std::max(la, lb));  // log2 sqrt(ρ²)
+    la = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    lb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
   }
 };
 
@@ -200,6 +207,27 @@ inline int toFixed8(float x) {
 inline int fixed8Floor(int X) { return X >> kWeightBits; }
 inline int fixed8Weight(int X) { return X & ((1 << kWeightBits) - 1); }
 
+// The level(s) one λ selects (MIPFILTER POINT or LINEAR; NONE is handled by the caller).
+struct LevelChoice {
+  int level[2];
+  float frac;  // weight of level[1]; 0: level[0] alone
+};
+LevelChoice chooseLevels(const Texture& tex, const SamplerState& st, float lam) {
+  const int last = tex.levelCount() - 1;
+  // MAXMIPLEVEL: the most detailed level that may be used; λ is clamped to
+  // [MAXMIPLEVEL, levels-1].
+  const int first = int(std::min<uint32_t>(st.maxMipLevel, uint32_t(last)));
+  const float lc = clampFinite(lam, float(first), float(last));
+  if (st.mipFilter == TextureFilter::Point) {
+    const int nearest = int(std::floor(lc + 0.5f));
+    return {{nearest, nearest}, 0.0f};
+  }
+  // LINEAR: levels floor(λ) and floor(λ)+1, weighted by frac(λ) in 1/256
+  const int L = toFixed8(lc);
+  const int l0 = fixed8Floor(L);  // lc <= last, so l0 < last or the weight is 0
+  return {{l0, std::min(l0 + 1, last)}, float(fixed8Weight(L)) * kWeightUnit};
+}
+
 void planLevels(const Texture& tex, const SamplerState& st, const float lam[kLanes],
                 LanePlan& p) {
   // λ <= 0: magnification (NaN from degenerate coordinates counts as such).
@@ -211,22 +239,10 @@ void planLevels(const Texture& tex, const SamplerState& st, const float lam[kLan
     for (int l = 0; l < kLanes; ++l) p.level[0][l] = p.level[1][l] = 0, p.mipFrac[l] = 0;
     return;
   }
-  const int last = tex.levelCount() - 1;
-  // MAXMIPLEVEL: the most detailed level that may be used; λ is clamped to
-  // [MAXMIPLEVEL, levels-1].
-  const int first = int(std::min<uint32_t>(st.maxMipLevel, uint32_t(last)));
   for (int l = 0; l < kLanes; ++l) {
-    float lc = clampFinite(lam[l], float(first), float(last));
-    if (mip == uint32_t(TextureFilter::Point)) {
-      p.level[0][l] = p.level[1][l] = int(std::floor(lc + 0.5f));  // nearest level
-      p.mipFrac[l] = 0;
-    } else {  // LINEAR: levels floor(λ) and floor(λ)+1, weighted by frac(λ) in 1/256
-      const int L = toFixed8(lc);
-      const int l0 = fixed8Floor(L);  // lc <= last, so l0 < last or the weight is 0
-      p.level[0][l] = l0;
-      p.level[1][l] = std::min(l0 + 1, last);
-      p.mipFrac[l] = float(fixed8Weight(L)) * kWeightUnit;
-    }
+    const LevelChoice choice = chooseLevels(tex, st, lam[l]);
+    p.level[0][l] = choice.level[0], p.level[1][l] = choice.level[1];
+    p.mipFrac[l] = choice.frac;
   }
 }
 
@@ -871,6 +887,224 @@ void samplePass(const Texture& tex, const SamplerState& st, const LanePlan& plan
   }
 }
 
+// ---------------------------------------------------------------- anisotropic filtering
+//
+// MINFILTER / MAGFILTER ANISOTROPIC (docs/anisotropic_filtering.md). The isotropic λ
+// (log2 Pmax + bias) decides between MAGFILTER (λ <= 0) and MINFILTER as for the other
+// filters. Where the chosen filter is ANISOTROPIC, with Pmax, Pmin the longer and
+// shorter derivative vector in texels of level 0:
+//   N = min(ceil(Pmax/Pmin), MAXANISOTROPY clamped to [1,16])   (Pmin = 0: the limit)
+//   λ' = λ - log2 N  = log2(Pmax/N) + bias, which selects the level(s) by MIPFILTER
+//   probe i (0..N-1) at c + ((i + 0.5)/N - 0.5)·d, d the longer derivative vector in
+//   coordinate units (cube maps: the direction's derivative, each probe picks its face)
+//   result = (sum of the probes, each bilinear and mip-blended as LINEAR would) / N.
+// N = 1 is LINEAR exactly. Volume textures filter ANISOTROPIC as LINEAR. λ given
+// explicitly (texldl, vertex texture fetch) has no footprint: N = 1.
+
+constexpr uint32_t kMaxAnisotropy = 16;
+
+uint32_t anisotropyLimit(const SamplerState& st) {
+  return std::clamp<uint32_t>(st.maxAnisotropy, 1, kMaxAnisotropy);
+}
+
+// Whether ANISOTROPIC filtering can differ from LINEAR for this texture and state.
+bool anisotropicFootprint(const Texture& tex, const SamplerState& st) {
+  return (st.minFilter == TextureFilter::Anisotropic ||
+          st.magFilter == TextureFilter::Anisotropic) &&
+         tex.type() != TextureType::Volume;
+}
+
+// One lane's probes along the major axis of its footprint.
+struct AnisoProbes {
+  int count = 1;         // N
+  float axis[3] = {};    // the longer derivative vector, coordinate units
+};
+
+// The derivatives lane `lane` filters with (the 2x2 quad's for Derivatives/Bias, the
+// lane's own for Gradients) and the lane whose coordinates place them on a cube face.
+// False when λ has no footprint (Explicit).
+bool laneDerivatives(const SampleRequest& req, const float* const c[3], int lane, float dx[3],
+                     float dy[3], int& footLane) {
+  switch (req.lodMode) {
+    case LodMode::Explicit:
+      return false;
+    case LodMode::Gradients:
+      for (int i = 0; i < 3; ++i) {
+        dx[i] = req.ddx[i] ? req.ddx[i][lane] : 0.0f;
+        dy[i] = req.ddy[i] ? req.ddy[i][lane] : 0.0f;
+      }
+      footLane = lane;
+      return true;
+    case LodMode::Derivatives:
+    case LodMode::Bias:
+      break;
+  }
+  const int tl = lane & ~3, tr = tl + 1, bl = tl + 2;
+  for (int i = 0; i < 3; ++i) {
+    dx[i] = c[i][tr] - c[i][tl];
+    dy[i] = c[i][bl] - c[i][tl];
+  }
+  footLane = tl;
+  return true;
+}
+
+AnisoProbes anisoProbes(const Footprint& fp, const SamplerState& st, const SampleRequest& req,
+                        const float* const c[3], int lane) {
+  AnisoProbes p;
+  float dx[3], dy[3];
+  int footLane;
+  if (!laneDerivatives(req, c, lane, dx, dy, footLane)) return p;
+  float la, lb;
+  fp.squaredLengths(c, footLane, dx, dy, la, lb);
+  const float pmax2 = std::max(la, lb), pmin2 = std::min(la, lb);
+  // No footprint to stretch: zero, infinite or NaN lengths filter as LINEAR.
+  if (!(pmax2 > 0.0f) || !std::isfinite(pmax2) || !(pmin2 >= 0.0f)) return p;
+  const uint32_t limit = anisotropyLimit(st);
+  const float ratio = std::sqrt(pmax2 / pmin2);  // Pmax/Pmin; +inf when Pmin = 0
+  p.count = ratio >= float(limit) ? int(limit) : int(std::ceil(ratio));
+  const float* major = la >= lb ? dx : dy;
+  for (int i = 0; i < 3; ++i) p.axis[i] = major[i];
+  return p;
+}
+
+// λ' = λ - log2 N.
+inline float anisoLambda(float lam, int count) {
+  static const std::array<float, kMaxAnisotropy + 1> log2N = [] {
+    std::array<float, kMaxAnisotropy + 1> t{};
+    for (uint32_t n = 1; n <= kMaxAnisotropy; ++n) t[n] = std::log2(float(n));
+    return t;
+  }();
+  return count == 1 ? lam : lam - log2N[size_t(count)];
+}
+
+// Offset of probe i of n along the axis, in axis lengths: the centre of the i-th of n
+// equal parts of [-1/2, 1/2].
+inline float probeOffset(int i, int n) { return (float(i) + 0.5f) / float(n) - 0.5f; }
+
+// Coordinate k of probe i.
+inline float probeCoord(const float* const c[3], const AnisoProbes& p, int k, int lane, int i) {
+  if (p.count == 1) return c[k][lane];
+  return c[k][lane] + probeOffset(i, p.count) * p.axis[k];
+}
+
+// The reference: lane by lane, probe by probe, with the scalar sampler.
+void sampleAnisoReference(const Texture& tex, const SamplerState& st, const SampleRequest& req,
+                          const float* const c[3], const float lam[kLanes], uint32_t lanes,
+                          float out[4][kLanes]) {
+  const Footprint fp(tex);
+  const bool cube = tex.type() == TextureType::Cube;
+  for (int l = 0; l < kLanes; ++l) {
+    if (!(lanes >> l & 1)) continue;
+    const AnisoProbes probes = anisoProbes(fp, st, req, c, l);
+    LevelChoice levels{{0, 0}, 0.0f};
+    if (st.mipFilter != TextureFilter::None)
+      levels = chooseLevels(tex, st, anisoLambda(lam[l], probes.count));
+    Color4 sum{0, 0, 0, 0};
+    for (int i = 0; i < probes.count; ++i) {
+      float p[3] = {probeCoord(c, probes, 0, l, i), probeCoord(c, probes, 1, l, i),
+                    probeCoord(c, probes, 2, l, i)};
+      int face = 0;
+      TextureAddress addr[3] = {validAddress(st.addressU), validAddress(st.addressV),
+                                validAddress(st.addressW)};
+      if (cube) {
+        const float d[3] = {p[0], p[1], p[2]};
+        face = selectCubeFace(d[0], d[1], d[2]);
+        faceCoords(face, d, p[0], p[1]);
+        addr[0] = addr[1] = TextureAddress::Clamp;
+      }
+      const LevelReader first(tex.sampleLevel(face, levels.level[0]), st);
+      Color4 s = sampleScalar(first, addr, true, false, p[0], p[1], p[2]);
+      if (levels.frac > 0) {
+        const LevelReader second(tex.sampleLevel(face, levels.level[1]), st);
+        s = lerp(s, sampleScalar(second, addr, true, false, p[0], p[1], p[2]), levels.frac);
+      }
+      sum = {sum.r + s.r, sum.g + s.g, sum.b + s.b, sum.a + s.a};
+    }
+    const float n = float(probes.count);
+    out[0][l] = sum.r / n, out[1][l] = sum.g / n, out[2][l] = sum.b / n, out[3][l] = sum.a / n;
+  }
+}
+
+// The batched path: probe i of every lane at once through samplePass (the vectorised
+// kernel where the level allows it). The same operations per lane as the reference.
+void sampleAnisoBatched(const Texture& tex, const SamplerState& st, const SampleRequest& req,
+                        const float* const c[3], const float lam[kLanes], uint32_t lanes,
+                        float out[4][kLanes]) {
+  const Footprint fp(tex);
+  const bool cube = tex.type() == TextureType::Cube;
+  const int dims = cube ? 3 : 2;  // a 2D probe's w is never read
+  // Per lane, as rows: N (0 for lanes not sampled here) and the axis.
+  int count[kLanes] = {};
+  float axis[3][kLanes] = {};
+  float lamA[kLanes];
+  const bool perQuad = req.lodMode == LodMode::Derivatives || req.lodMode == LodMode::Bias;
+  int maxCount = 1;
+  for (int l = 0; l < kLanes; ++l) {
+    if (!(lanes >> l & 1)) {
+      lamA[l] = lam[l];
+      continue;
+    }
+    // Quad derivatives: the probes depend on the quad alone, so its lanes share them.
+    const int from = perQuad ? l & ~3 : l;
+    if (from != l && (lanes >> from & 1)) {
+      count[l] = count[from];
+      for (int k = 0; k < 3; ++k) axis[k][l] = axis[k][from];
+    } else {
+      const AnisoProbes p = anisoProbes(fp, st, req, c, l);
+      count[l] = p.count;
+      for (int k = 0; k < 3; ++k) axis[k][l] = p.axis[k];
+    }
+    lamA[l] = anisoLambda(lam[l], count[l]);
+    maxCount = std::max(maxCount, count[l]);
+  }
+  LanePlan plan;
+  planLevels(tex, st, lamA, plan);
+  for (int l = 0; l < kLanes; ++l) plan.linear[l] = 1;
+  uint32_t blendLanes = 0;
+  for (int l = 0; l < kLanes; ++l) blendLanes |= uint32_t(plan.mipFrac[l] > 0) << l;
+
+  TextureAddress addr[3] = {validAddress(st.addressU), validAddress(st.addressV),
+                            validAddress(st.addressW)};
+  if (cube) addr[0] = addr[1] = TextureAddress::Clamp;
+  float sum[4][kLanes] = {};
+  for (int i = 0; i < maxCount; ++i) {
+    uint32_t todo = 0;
+    for (int l = 0; l < kLanes; ++l) todo |= uint32_t(count[l] > i) << l;
+    // Probe i's coordinates: probeCoord's operations, lanes not sampled keep c.
+    float p[3][kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      const int n = count[l] > 1 ? count[l] : 1;
+      const float t = probeOffset(i, n);
+      const bool moved = count[l] > 1 && count[l] > i;
+      for (int k = 0; k < dims; ++k) p[k][l] = moved ? c[k][l] + t * axis[k][l] : c[k][l];
+    }
+    if (!cube) std::memcpy(p[2], c[2], sizeof p[2]);
+    int face[kLanes] = {};
+    if (cube)
+      for (int l = 0; l < kLanes; ++l) {
+        const float d[3] = {p[0][l], p[1][l], p[2][l]};
+        face[l] = selectCubeFace(d[0], d[1], d[2]);
+        faceCoords(face[l], d, p[0][l], p[1][l]);
+      }
+    float s[4][kLanes];
+    samplePass(tex, st, plan, 0, todo, face, p[0], p[1], p[2], addr, true, s);
+    const uint32_t blend = blendLanes & todo;
+    if (blend) {
+      float second[4][kLanes];
+      samplePass(tex, st, plan, 1, blend, face, p[0], p[1], p[2], addr, true, second);
+      for (int ch = 0; ch < 4; ++ch)
+        for (int l = 0; l < kLanes; ++l)
+          if (blend >> l & 1) s[ch][l] = s[ch][l] + plan.mipFrac[l] * (second[ch][l] - s[ch][l]);
+    }
+    for (int ch = 0; ch < 4; ++ch)
+      for (int l = 0; l < kLanes; ++l)
+        if (todo >> l & 1) sum[ch][l] += s[ch][l];
+  }
+  for (int ch = 0; ch < 4; ++ch)
+    for (int l = 0; l < kLanes; ++l)
+      if (lanes >> l & 1) out[ch][l] = sum[ch][l] / float(count[l]);
+}
+
 // What the one-level 2D path needs to know about a texture and sampler state
 // (MIPFILTER NONE or POINT, λ from quad derivatives).
 struct Fast2D {
@@ -991,10 +1225,13 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
   TextureAddress addr[3] = {validAddress(st.addressU), validAddress(st.addressV),
                             validAddress(st.addressW)};
 
+  // ANISOTROPIC probes the footprint; the vectorised paths leave MAXANISOTROPY 1 to
+  // LINEAR, which it equals (the reference takes the anisotropic path to show that).
+  const bool aniso = anisotropicFootprint(tex, st) && (!allowFast || anisotropyLimit(st) > 1);
   // λ only matters when it picks a level or chooses between MAGFILTER and MINFILTER.
-  const bool needLambda =
-      st.mipFilter != TextureFilter::None || isLinear(st.magFilter) != isLinear(st.minFilter);
-  const uint32_t mask = req.laneMask;
+  const bool needLambda = aniso || st.mipFilter != TextureFilter::None ||
+                          isLinear(st.magFilter) != isLinear(st.minFilter);
+  uint32_t mask = req.laneMask;
 
   // Common case: one 2D level, one filter for every lane.
   if (!needLambda && type == TextureType::Texture2D && allowFast) {
@@ -1008,13 +1245,35 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
 
   // Common case with mip levels: a 2D texture, λ from quad derivatives, no mip
   // blending, and one level and filter for the whole batch.
-  if (needLambda && type == TextureType::Texture2D && allowFast &&
+  if (needLambda && !aniso && type == TextureType::Texture2D && allowFast &&
       req.lodMode == LodMode::Derivatives && st.mipFilter != TextureFilter::Linear &&
       sample2DUniform(Fast2D(tex, st, addr), c, mask, out))
     return;
 
   float lam[kLanes] = {};
   if (needLambda) computeLambda(tex, st, req, c, lam);
+
+  // Lanes whose filter (MINFILTER for λ > 0, else MAGFILTER) is ANISOTROPIC, sampled
+  // into their own rows; the rest go on below.
+  uint32_t anisoLanes = 0;
+  float anisoOut[4][kLanes];
+  if (aniso) {
+    for (int l = 0; l < kLanes; ++l)
+      anisoLanes |= uint32_t((lam[l] > 0 ? st.minFilter : st.magFilter) ==
+                             TextureFilter::Anisotropic) << l;
+    anisoLanes &= mask;
+    if (anisoLanes) {
+      (allowFast ? sampleAnisoBatched : sampleAnisoReference)(tex, st, req, c, lam, anisoLanes,
+                                                              anisoOut);
+      mask &= ~anisoLanes;
+      if (!mask) {  // every lane anisotropic
+        for (int ch = 0; ch < 4; ++ch) std::memcpy(out[ch], anisoOut[ch], sizeof out[ch]);
+        if (req.laneMask != 0xffff) clearLanes(out, req.laneMask);
+        return;
+      }
+    }
+  }
+
   LanePlan plan;
   planLevels(tex, st, lam, plan);
 
@@ -1046,11 +1305,14 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
     for (int ch = 0; ch < 4; ++ch)
       for (int l = 0; l < kLanes; ++l) {
         float r0 = out[ch][l], f = plan.mipFrac[l];
-        out[ch][l] = f > 0 ? r0 + f * (second[ch][l] - r0) : r0;
+        out[ch][l] = blend >> l & 1 ? r0 + f * (second[ch][l] - r0) : r0;
       }
   }
 
-  if (mask != 0xffff) clearLanes(out, mask);
+  for (int ch = 0; ch < 4; ++ch)
+    for (int l = 0; l < kLanes; ++l)
+      if (anisoLanes >> l & 1) out[ch][l] = anisoOut[ch][l];
+  if (req.laneMask != 0xffff) clearLanes(out, req.laneMask);
 }
 
 }  // namespace
@@ -1104,7 +1366,9 @@ PreparedSampler::PreparedSampler(const Texture& tex, const SamplerState& state)
     : tex_(&tex), state_(state) {
   const TextureAddress addr[3] = {validAddress(state.addressU), validAddress(state.addressV),
                                   validAddress(state.addressW)};
-  if (tex.type() == TextureType::Texture2D && tex.levelCount() > 0)
+  // ANISOTROPIC (beyond MAXANISOTROPY 1) goes through sampleImpl every time.
+  const bool aniso = anisotropicFootprint(tex, state) && anisotropyLimit(state) > 1;
+  if (tex.type() == TextureType::Texture2D && tex.levelCount() > 0 && !aniso)
     plan_ = std::make_shared<const PreparedPlan>(tex, state, addr);
 }
 

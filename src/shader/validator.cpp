@@ -1340,7 +1340,13 @@ void Validator::checkOutputs(const Instruction& in) {
   if (v_.major == 2) {
     const SrcParam& s = in.src[0];
     if (in.opcode != O::Mov) error(in, "{} is written only by mov in {}", n, name_);
-    else if (s.swizzle != kIdentity || s.mod != SrcMod::None)
+    // oDepth takes one component, which a replicate swizzle (.x .y .z .w) may select
+    // (fxc emits mov oDepth, r0.x); other swizzles stay rejected, as for oCn.
+    else if (d.type == R::DepthOut && (s.mod != SrcMod::None ||
+                                       (s.swizzle != kIdentity && !isReplicate(s.swizzle))))
+      error(in, "mov to {} takes no source modifier and no swizzle but .x .y .z .w in {}", n,
+            name_);
+    else if (d.type == R::ColorOut && (s.swizzle != kIdentity || s.mod != SrcMod::None))
       error(in, "mov to {} takes no source swizzle or modifier in {}", n, name_);
     if (d.type == R::ColorOut && d.writeMask != 0xF) error(in, "{} is written with the full mask in {}", n, name_);
     if (d.resultMod & ResultSaturate) error(in, "{} cannot be written with _sat in {}", n, name_);
@@ -1354,6 +1360,12 @@ void Validator::checkOutputs(const Instruction& in) {
   } else {
     if (dynamicFlow || in.predicated)
       error(in, "{} cannot be written inside dynamic flow control or predicated", n);
+    // ps_3_0 writes outputs with any instruction; a mov to oDepth still selects one
+    // component, so its swizzle is a replicate (or none, which reads .x).
+    const uint8_t sw = in.src[0].swizzle;
+    if (d.type == R::DepthOut && in.opcode == O::Mov && in.srcCount > 0 && sw != kIdentity &&
+        !isReplicate(sw))
+      error(in, "mov to {} takes no swizzle but .x .y .z .w in {}", n, name_);
     if (d.type == R::ColorOut) colorOutWritten_.insert(d.index);
     else depthWritten_ = true;
   }

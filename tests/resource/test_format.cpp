@@ -312,3 +312,34 @@ TEST(Format, Dxt5AlphaSixValues) {
   for (int i = 0; i < 8; ++i) EXPECT_NEAR(t[i].a, expect[i] / 255.f, 1e-6f) << i;
   expectColor(t[0], 0, 0, 0, 50 / 255.f);
 }
+
+// encodeRowExact: unsigned n-bit fields store floor(v·(2ⁿ−1) + 0.5) of the float v exactly,
+// signed 8-bit ones round(v·127) with ties away from zero.
+TEST(Format, EncodeRowExactRounding) {
+  auto encode = [](Format f, Color4 c) {
+    uint8_t out[4] = {};
+    encodeRowExact(f, &c, 1, out);
+    return std::vector<uint8_t>(out, out + 4);
+  };
+  // A4R4G4B4 (bits: A 12-15, R 8-11, G 4-7, B 0-3): 0.3f·15 = 4.5000002 -> 5;
+  // 0.5·15 = 7.5, a tie -> 8; 0.6f·15 = 9.0000004 -> 9.
+  auto a4 = encode(Format::A4R4G4B4, {0.3f, 0.5f, 0.3f, 0.6f});
+  EXPECT_EQ(a4[0], 0x85);  // G = 8, B = 5
+  EXPECT_EQ(a4[1], 0x95);  // A = 9, R = 5
+  // A8R8G8B8 (bytes B G R A): 0.5·255 = 127.5, a tie -> 128. The float 0x1.0101p-9 is just
+  // below the tie 0.5/255: v·255 = 0.49999997 -> 0 (float arithmetic v·255.0f rounds it up
+  // onto 0.5 and gives 1). 0x1.0102p-9 is just above it: 0.50000003 -> 1.
+  const float below = std::ldexp(1.0f + 1.0f / 256 + 1.0f / 65536, -9);
+  const float above = std::ldexp(1.0f + 1.0f / 256 + 2.0f / 65536, -9);
+  ASSERT_LT(double(below) * 255.0, 0.5);
+  ASSERT_GT(double(above) * 255.0, 0.5);
+  auto a8 = encode(Format::A8R8G8B8, {0.5f, below, above, 1.0f});
+  EXPECT_EQ(a8, (std::vector<uint8_t>{1, 0, 128, 255}));
+  auto l8 = encode(Format::L8, {below, 0, 0, 0});
+  EXPECT_EQ(l8[0], 0);
+  // V8U8 (U byte 0, V byte 1): round(0.5·127 = 63.5) = 64 (away from zero),
+  // round(-0.5·127 = -63.5) = -64 = 0xc0.
+  auto v8 = encode(Format::V8U8, {0.5f, -0.5f, 0, 0});
+  EXPECT_EQ(v8[0], 64);
+  EXPECT_EQ(v8[1], 0xc0);
+}

@@ -980,6 +980,31 @@ TEST(ValidatorPs20, ColorOutputs) {
   EXPECT_TRUE(isValid("ps_3_0\ndcl_texcoord0 v0\nadd_sat oC0, v0, v0\nmul oC0.x, v0, c0"));
 }
 
+// oDepth takes one scalar: a replicate swizzle selects it (fxc writes mov oDepth, r0.x),
+// any other swizzle and any modifier are errors, as for oCn.
+TEST(ValidatorPs20, DepthOutputSwizzle) {
+  for (std::string h : {"ps_2_0\ndcl t0\n", "ps_2_x\ndcl t0\n"}) {
+    const std::string ver = h.substr(0, 6);
+    for (const char* rep : {"x", "y", "z", "w", "r", "a"})
+      EXPECT_TRUE(isValid(h + "mov r0, t0\nmov oC0, r0\nmov oDepth, r0." + rep)) << ver << " ." << rep;
+    EXPECT_TRUE(isValid(h + "mov r0, t0\nmov oC0, r0\nmov oDepth, r0"));
+    const std::string msg = "mov to oDepth takes no source modifier and no swizzle but .x .y .z .w in " + ver;
+    EXPECT_TRUE(hasError(h + "mov r0, t0\nmov oC0, r0\nmov oDepth, r0.xy", msg)) << ver;
+    EXPECT_TRUE(hasError(h + "mov r0, t0\nmov oC0, r0\nmov oDepth, r0.yx", msg)) << ver;
+    EXPECT_TRUE(hasError(h + "mov r0, t0\nmov oC0, r0\nmov oDepth, r0.yzxw", msg)) << ver;
+    EXPECT_TRUE(hasError(h + "mov r0, t0\nmov oC0, r0\nmov oDepth, -r0.x", msg)) << ver;
+    // oCn keeps its rule: no swizzle at all.
+    EXPECT_TRUE(hasError(h + "mov r0, t0\nmov oC0, r0.x", "mov to oC0 takes no source swizzle or modifier in " + ver));
+  }
+  EXPECT_TRUE(isValid("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0.x"));
+  EXPECT_TRUE(isValid("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0.w"));
+  EXPECT_TRUE(isValid("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0"));
+  EXPECT_TRUE(hasError("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0.xy",
+                       "mov to oDepth takes no swizzle but .x .y .z .w in ps_3_0"));
+  EXPECT_TRUE(hasError("ps_3_0\ndcl_texcoord0 v0\nmov r0, v0\nmov oC0, r0\nmov oDepth, r0.yx",
+                       "mov to oDepth takes no swizzle but .x .y .z .w in ps_3_0"));
+}
+
 TEST(ValidatorPs20, FlowControlAvailability) {
   EXPECT_TRUE(hasError("ps_2_0\ndefi i0, 2, 0, 0, 0\nrep i0\nendrep\nmov oC0, c0", "defi is not a ps_2_0 instruction"));
   EXPECT_TRUE(hasError("ps_2_0\nrep i0\nendrep\nmov oC0, c0", "rep is not a ps_2_0 instruction"));

@@ -80,6 +80,11 @@ size_t formatImageSize(Format f, int width, int height, int depth = 1);
 void decodeRow(Format f, const uint8_t* src, int count, Color4* out);
 // Encodes values (as a shader would read them back) into a row of a non-compressed format.
 void encodeRow(Format f, const Color4* src, int count, uint8_t* out);
+// encodeRow with exact rounding: an n-bit unsigned field stores floor(v·(2ⁿ−1) + 0.5),
+// a signed one round(v·(2ⁿ⁻¹−1)) with ties away from zero, both computed in double
+// (encodeRow's 8-bit formats form v·255 in float first, which can round a value just
+// below a tie up onto it). The scene-script texture generators store texels this way.
+void encodeRowExact(Format f, const Color4* src, int count, uint8_t* out);
 // unorm8() that maps NaN to 0 (float textures may hold NaN).
 inline uint8_t unorm8Safe(float v) { return v == v ? unorm8(v) : uint8_t(0); }
 

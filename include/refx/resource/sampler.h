@@ -1,4 +1,4 @@
-// Texture sampling over SoA batches: addressing, point/linear/anisotropic(as linear)
+// Texture sampling over SoA batches: addressing, point/linear/anisotropic
 // filtering, mip selection from quad derivatives, cube face selection, border, sRGB.
 #pragma once
 #include <cstdint>
