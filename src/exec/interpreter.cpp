@@ -601,7 +601,8 @@ void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters&
   const std::vector<Instr>& code = program.code;
   const int n = int(code.size());
   int pc = 0;
-  for (long budget = kMaxExecutedInstructions; pc >= 0 && pc < n && budget > 0; --budget) {
+  long budget = kMaxExecutedInstructions;
+  for (; pc >= 0 && pc < n && budget > 0; --budget) {
     const Instr& in = code[size_t(pc)];
     switch (in.op) {
       case Op::If: {
@@ -717,6 +718,7 @@ void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters&
   }
   exec = 0xffff;
   regs.loopCounter = 0;
+  regs.executedInstructions = kMaxExecutedInstructions - budget;
 }
 
 // ---------------------------------------------------------------- prepared programs
