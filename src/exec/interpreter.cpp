@@ -720,6 +720,7 @@ void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters&
     ctx.boundStops->fetch_add(1, std::memory_order_relaxed);
   exec = 0xffff;
   regs.loopCounter = 0;
+  regs.executedInstructions = kMaxExecutedInstructions - budget;
 }
 
 // ---------------------------------------------------------------- prepared programs

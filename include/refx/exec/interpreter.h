@@ -53,6 +53,9 @@ struct BatchRegisters {
   // otherwise). Runs leave it at 0xffff.
   uint16_t execMask = 0xffff;
   int loopCounter = 0;  // aL of the innermost running loop
+  // Instructions the last run of a program with flow control executed (flow-control
+  // instructions included, lanes counted once per batch); at most kMaxExecutedInstructions.
+  long executedInstructions = 0;
   std::shared_ptr<const PreparedProgram> prepared;  // set by prepare()
   void resize(const Program& p);
 };
