@@ -16,6 +16,7 @@
 #include "refx/core/diagnostics.h"
 #include "refx/resource/sampler.h"
 #include "render_targets.h"
+#include "validate.h"
 #include "vertex_fetch.h"
 
 namespace refx {
@@ -81,6 +82,21 @@ void Device::setRenderTarget(int index, TexturePtr target) {
     state_.viewport = Viewport{0, 0, t->width(), t->height(), 0, 1};
     state_.scissor = Rect{0, 0, t->width(), t->height()};
   }
+}
+
+ValidationResult Device::validate() const {
+  RenderTargetBinding binding;
+  binding.count = 0;
+  const Texture* first = nullptr;
+  for (int i = 0; i < int(targets_.size()); ++i) {
+    const Texture* t = targets_[size_t(i)].get();
+    if (!t) continue;
+    binding.count = i + 1;
+    if (!first) first = t;
+    else if (t->format() != first->format()) binding.formatsDiffer = true;
+  }
+  binding.count = std::max(binding.count, 1);
+  return validateDeviceState(state_, caps_, binding);
 }
 
 void Device::setDepthStencilSurface(DepthStencilPtr ds) {

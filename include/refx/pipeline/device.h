@@ -144,7 +144,8 @@ class Device {
   DeviceState& mutableState() { return state_; }
 
   // ValidateDevice against the active caps profile.
-  ValidationResult validate() const { return validateDeviceState(state_, caps_); }
+  // (with the render targets bound: NumSimultaneousRTs, MRTINDEPENDENTBITDEPTHS)
+  ValidationResult validate() const;
 
   // What the device reported while drawing, at most one warning per draw and kind
   // (code D1001: a shader stopped by the executed-instruction bound).
