@@ -16,8 +16,9 @@ int positionBytes(uint32_t fvf) {
     case 0: return 0;
     case fvf::XYZRHW:
     case fvf::XYZW: return 16;
-    case 0x002: case 0x006: case 0x008: case 0x00a: case 0x00c: case 0x00e:
-      return 12 + 4 * int((pos - 0x002) / 2);  // XYZ, XYZB1 ... XYZB5
+    case 0x002: return 12;  // XYZ
+    case 0x006: case 0x008: case 0x00a: case 0x00c: case 0x00e:
+      return 12 + 4 * (int(pos - 0x006) / 2 + 1);  // XYZB1 ... XYZB5: x y z and 1-5 betas
     default: fail("FVF 0x{:x}: position bits 0x{:x} are not a D3DFVF position type", fvf, pos);
   }
 }
