@@ -5,6 +5,7 @@
 #include "pipeline/device_helpers.h"
 #include "refx/core/diagnostics.h"
 #include "refx/effect/effect.h"
+#include "refx/effect/fx2_binary.h"
 
 using namespace refx;
 using namespace refx::effect;
@@ -31,6 +32,25 @@ TEST(EffectState, WorldTransformIndexReachesWorldMatrix) {
   EXPECT_EQ(dev->getTransform(worldMatrix(200)).m[2][2], 3.0f);
   EXPECT_EQ(dev->getTransform(worldMatrix(255)).m[3][2], -3.0f);
   // WORLDMATRIX(0) (D3DTS_WORLD) is untouched.
+  EXPECT_EQ(dev->getTransform(TS_WORLD), Matrix::identity());
+  fx->endPass();
+  fx->end();
+}
+
+TEST(EffectState, WorldTransformIndexSurvivesTheFx2Binary) {
+  // fx_2_0 stores WorldTransform (operation 125) with its index; loading the binary back
+  // sets the same D3DTS_WORLDMATRIX(n).
+  auto text = Effect::fromText(R"(
+    technique t { pass p {
+      WorldTransform[200] = float4x4(1,0,0,0, 0,1,0,0, 0,0,1,0, 7,8,9,1);
+    } })",
+                               "blend.fx");
+  ASSERT_TRUE(text->diagnostics().empty()) << text->diagnostics()[0].str();
+  auto fx = Effect::fromFx2(writeFx2(*text).bytes, "blend.fxo");
+  auto dev = test::makeDevice(4, 4);
+  fx->begin(*dev, kDoNotSaveState);
+  fx->beginPass(0);
+  EXPECT_EQ(dev->getTransform(worldMatrix(200)).m[3][1], 8.0f);
   EXPECT_EQ(dev->getTransform(TS_WORLD), Matrix::identity());
   fx->endPass();
   fx->end();
