@@ -797,9 +797,11 @@ class Parser {
       // WORLDn (D3DTS_WORLDMATRIX(n)), n = 0-255.
       std::string name = lower(arg(1));
       if (name.starts_with("d3dts_")) name.erase(0, 6);
-      if (name.size() > 5 && name.starts_with("world")) {
-        auto n = toInt(std::string_view(name).substr(5));
-        if (n && name[5] != '-' && name[5] != '+') {
+      const std::string_view digits = std::string_view(name).substr(std::min<size_t>(name.size(), 5));
+      if (name.starts_with("world") && !digits.empty() &&
+          digits.find_first_not_of("0123456789") == std::string_view::npos) {
+        auto n = toInt(digits);
+        if (n) {
           if (*n > 255)
             errAt(1, fmt::format("world matrix index {} is out of range (WORLD0-WORLD255)", *n));
           type = d3d::worldMatrix(int(*n));

@@ -91,6 +91,10 @@ TEST(VertexBlendScript, Errors) {
             std::string::npos);
   EXPECT_NE(parseError("transform WORLDX 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n").find("unknown transform"),
             std::string::npos);
+  EXPECT_NE(parseError("transform WORLD0x10 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n").find("unknown transform"),
+            std::string::npos);
+  EXPECT_NE(parseError("transform WORLD-1 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n").find("unknown transform"),
+            std::string::npos);
 }
 
 }  // namespace
