@@ -73,6 +73,19 @@ TEST(VertexBlendScript, WorldMatrixTransforms) {
   EXPECT_EQ(std::get<SetTransform>(s.commands[2].action).type, d3d::worldMatrix(255));
 }
 
+TEST(VertexBlendScript, VertexBlendValueNames) {
+  // D3DVERTEXBLENDFLAGS: DISABLE 0, 1-3WEIGHTS 1-3, TWEENING 255, 0WEIGHTS 256.
+  SceneScript s = parseSceneScript(
+      "rs VERTEXBLEND 2WEIGHTS\nrs VERTEXBLEND D3DVBF_TWEENING\nrs VERTEXBLEND 0weights\n"
+      "rs VERTEXBLEND 3\nrs VERTEXBLEND DISABLE\n",
+      "s.scene");
+  const uint32_t want[] = {2, 255, 256, 3, 0};
+  ASSERT_EQ(s.commands.size(), 5u);
+  for (size_t i = 0; i < 5; ++i)
+    EXPECT_EQ(std::get<SetRenderState>(s.commands[i].action).value, want[i]) << i;
+  EXPECT_NE(parseError("rs VERTEXBLEND 4WEIGHTS\n").find("unknown value '4WEIGHTS'"), std::string::npos);
+}
+
 TEST(VertexBlendScript, Errors) {
   EXPECT_NE(parseError("fvf xyzb6\n").find("s.scene:1"), std::string::npos);
   EXPECT_NE(parseError("fvf xyzb6\n").find("1 to 5 betas"), std::string::npos);

@@ -175,6 +175,7 @@ enum class EnumKind {
   TextureAddress, TextureFilter, LightType, PrimitiveType, TransformType, Bool,
   TexCoordIndexFlags, TextureTransformFlags, ColorWrite, Format,
   Wrap,  // D3DWRAP_U/V/W, D3DWRAPCOORD_0-3 (RS_WRAPn)
+  VertexBlend,  // D3DVBF_* (RS_VERTEXBLEND)
 };
 // Canonical name without prefix ("DOTPRODUCT3"); empty when unknown.
 std::string_view enumName(EnumKind kind, uint32_t value);
