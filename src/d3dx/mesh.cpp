@@ -16,8 +16,9 @@ int positionBytes(uint32_t fvf) {
     case 0: return 0;
     case fvf::XYZRHW:
     case fvf::XYZW: return 16;
-    case 0x002: case 0x006: case 0x008: case 0x00a: case 0x00c: case 0x00e:
-      return 12 + 4 * int((pos - 0x002) / 2);  // XYZ, XYZB1 ... XYZB5
+    case 0x002: return 12;  // XYZ
+    case 0x006: case 0x008: case 0x00a: case 0x00c: case 0x00e:
+      return 12 + 4 * (int(pos - 0x006) / 2 + 1);  // XYZB1 ... XYZB5: x y z and 1-5 betas
     default: fail("FVF 0x{:x}: position bits 0x{:x} are not a D3DFVF position type", fvf, pos);
   }
 }
@@ -30,6 +31,14 @@ FVFLayout FVFLayout::of(uint32_t code) {
   if (n > 8) fail("FVF 0x{:x}: {} texture coordinate sets, D3D allows at most 8", code, n);
   int off = positionBytes(code);
   if (off) l.position = 0;
+  const uint32_t pos = code & fvf::POSITION_MASK;
+  if (pos >= fvf::XYZB1 && pos <= fvf::XYZB5) {
+    const int betas = int(pos - fvf::XYZB1) / 2 + 1;
+    const bool indices = pos == fvf::XYZB5 || (code & (fvf::LASTBETA_UBYTE4 | fvf::LASTBETA_D3DCOLOR));
+    l.blendWeightCount = betas - (indices ? 1 : 0);
+    if (l.blendWeightCount > 0) l.blendWeights = 12;
+    if (indices) l.blendIndices = 12 + 4 * l.blendWeightCount;
+  }
   auto take = [&](uint32_t bit, int& field, int bytes) {
     if (code & bit) field = off, off += bytes;
   };
@@ -119,8 +128,11 @@ Mesh cloneMeshFVF(const Mesh& mesh, uint32_t newFvf) {
       std::memcpy(out.vertices.data() + size_t(i) * out.stride + dst,
                   mesh.vertices.data() + size_t(i) * mesh.stride + src, size_t(bytes));
   };
-  // Position: the x, y, z common to every position type (w / rhw / weights not carried).
+  // Position: the x, y, z common to every position type (w / rhw not carried); the blend
+  // weights both layouts have, and the matrix indices.
   copy(from.position, to.position, 12);
+  copy(from.blendWeights, to.blendWeights, 4 * std::min(from.blendWeightCount, to.blendWeightCount));
+  copy(from.blendIndices, to.blendIndices, 4);
   copy(from.normal, to.normal, 12);
   copy(from.psize, to.psize, 4);
   copy(from.diffuse, to.diffuse, 4);

@@ -191,6 +191,9 @@ constexpr NameValue kColorWrites[] = {
 // D3DWRAP_U/V/W and their D3DWRAPCOORD_0-3 aliases (same bits, plus COORD_3 = 8).
 constexpr NameValue kWraps[] = {{"U", 1}, {"V", 2}, {"W", 4}, {"COORD_0", 1},
                                 {"COORD_1", 2}, {"COORD_2", 4}, {"COORD_3", 8}};
+constexpr NameValue kVertexBlends[] = {
+    {"DISABLE", VBF_DISABLE}, {"1WEIGHTS", VBF_1WEIGHTS}, {"2WEIGHTS", VBF_2WEIGHTS},
+    {"3WEIGHTS", VBF_3WEIGHTS}, {"TWEENING", VBF_TWEENING}, {"0WEIGHTS", VBF_0WEIGHTS}};
 
 struct KindInfo {
   std::span<const NameValue> names;
@@ -226,6 +229,7 @@ KindInfo kindInfo(EnumKind kind) {
     case EnumKind::ColorWrite: return {kColorWrites, "D3DCOLORWRITEENABLE_", true};
     case EnumKind::Format: return {{}, "D3DFMT_", false};
     case EnumKind::Wrap: return {kWraps, "D3DWRAP_", true};
+    case EnumKind::VertexBlend: return {kVertexBlends, "D3DVBF_", false};
   }
   return {{}, "", false};
 }
@@ -317,7 +321,7 @@ constexpr StateValue kRenderStateValues[] = {
     {RS_SPECULARMATERIALSOURCE, kEnum(EnumKind::MaterialColorSource)},
     {RS_AMBIENTMATERIALSOURCE, kEnum(EnumKind::MaterialColorSource)},
     {RS_EMISSIVEMATERIALSOURCE, kEnum(EnumKind::MaterialColorSource)},
-    {RS_VERTEXBLEND, kUint}, {RS_CLIPPLANEENABLE, kUint}, {RS_POINTSIZE, kFloat},
+    {RS_VERTEXBLEND, kEnum(EnumKind::VertexBlend)}, {RS_CLIPPLANEENABLE, kUint}, {RS_POINTSIZE, kFloat},
     {RS_POINTSIZE_MIN, kFloat}, {RS_POINTSPRITEENABLE, kBool}, {RS_POINTSCALEENABLE, kBool},
     {RS_POINTSCALE_A, kFloat}, {RS_POINTSCALE_B, kFloat}, {RS_POINTSCALE_C, kFloat},
     {RS_MULTISAMPLEANTIALIAS, kBool}, {RS_MULTISAMPLEMASK, kUint},

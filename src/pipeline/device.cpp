@@ -218,20 +218,28 @@ void Device::setTexture(int sampler, TexturePtr texture) {
   state_.textures[sampler] = std::move(texture);
 }
 
+// D3DTS_WORLDMATRIX(n) is 256 + n for n in [0, 255]; the states above 511 do not exist.
+[[noreturn]] static void failTransformType(uint32_t type) {
+  if (type >= worldMatrix(kMaxWorldMatrices) && type < 2 * worldMatrix(kMaxWorldMatrices))
+    fail("transform type {} is D3DTS_WORLDMATRIX({}); world matrix indices are 0-255", type,
+         type - TS_WORLD);
+  fail("unknown transform type {}", type);
+}
+
 void Device::setTransform(uint32_t type, const Matrix& m) {
-  if (type == TS_WORLD) state_.world = m;
+  if (type >= TS_WORLD && type < worldMatrix(kMaxWorldMatrices)) state_.worldMatrix(int(type - TS_WORLD)) = m;
   else if (type == TS_VIEW) state_.view = m;
   else if (type == TS_PROJECTION) state_.projection = m;
   else if (type >= TS_TEXTURE0 && type < TS_TEXTURE0 + 8) state_.textureTransforms[type - TS_TEXTURE0] = m;
-  else fail("unknown transform type {}", type);
+  else failTransformType(type);
 }
 
 Matrix Device::getTransform(uint32_t type) const {
-  if (type == TS_WORLD) return state_.world;
+  if (type >= TS_WORLD && type < worldMatrix(kMaxWorldMatrices)) return state_.worldMatrix(int(type - TS_WORLD));
   if (type == TS_VIEW) return state_.view;
   if (type == TS_PROJECTION) return state_.projection;
   if (type >= TS_TEXTURE0 && type < TS_TEXTURE0 + 8) return state_.textureTransforms[type - TS_TEXTURE0];
-  fail("unknown transform type {}", type);
+  failTransformType(type);
 }
 
 void Device::setLight(int index, const Light& light) {
@@ -758,6 +766,11 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   for (int t = 0; t < 8; ++t)
     if (const VertexElement* e = decl.find(DECLUSAGE_TEXCOORD, uint8_t(t)))
       vcfg.texCoordDims[t] = e->type <= DECLTYPE_FLOAT4 ? e->type - DECLTYPE_FLOAT1 + 1 : 4;
+  if (const VertexElement* e = decl.find(DECLUSAGE_BLENDWEIGHT, 0))
+    vcfg.blendWeightCount = e->type <= DECLTYPE_FLOAT4 ? e->type - DECLTYPE_FLOAT1 + 1 : 4;
+  if (const VertexElement* e = decl.find(DECLUSAGE_BLENDINDICES, 0)) vcfg.blendIndicesType = e->type;
+  vcfg.hasPosition1 = decl.find(DECLUSAGE_POSITION, 1) != nullptr;
+  vcfg.hasNormal1 = decl.find(DECLUSAGE_NORMAL, 1) != nullptr;
   std::shared_ptr<const exec::LoweredShader> vlow;
   exec::Program ffVertex;
   std::vector<FetchElement> fetch;

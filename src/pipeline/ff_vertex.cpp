@@ -49,10 +49,37 @@ Matrix normalMatrix(const Matrix& m) {
   return r;
 }
 
+// How positions and normals reach camera space (D3DRS_VERTEXBLEND).
+enum class Blend {
+  None,     // World(0) * View
+  Weights,  // Σ weight_i * WorldMatrix(i or index_i) * View
+  Tween,    // lerp(POSITION0, POSITION1, TWEENFACTOR) (normals too), then World(0) * View
+};
+
+// Indexed vertex blending reads World(index)*View from a table of immediates at a
+// per-lane offset: 4 position columns, then 3 normal-matrix columns, per matrix.
+constexpr int kTableStride = 7;
+
 class Builder {
  public:
   Builder(const DeviceState& s, const FixedFunctionVertexConfig& c) : st_(s), cfg_(c) {
     worldView_ = s.world * s.view;
+    const uint32_t mode = s.rs(RS_VERTEXBLEND);
+    const bool indexed = s.rs(RS_INDEXEDVERTEXBLENDENABLE) && c.blendIndicesType >= 0;
+    if (c.pretransformed) {
+      blend_ = Blend::None;
+    } else if (mode >= VBF_1WEIGHTS && mode <= VBF_3WEIGHTS) {
+      blend_ = Blend::Weights;
+      blendMatrices_ = int(mode) + 1;
+      indexed_ = indexed;
+    } else if (mode == VBF_0WEIGHTS && indexed) {
+      // One matrix of weight 1; without indices that is World(0), the unblended case.
+      blend_ = Blend::Weights;
+      blendMatrices_ = 1;
+      indexed_ = true;
+    } else if (mode == VBF_TWEENING) {
+      blend_ = Blend::Tween;
+    }
   }
 
   Program build();
@@ -85,6 +112,15 @@ class Builder {
   // Lazily emitted per-vertex values (straight-line code: first use emits them).
   int cameraPosition();  // P = position * World * View (xyz)
   int cameraNormal();    // N (xyz, w = 0)
+  // Vertex blending pieces.
+  Src modelPosition();   // POSITION0, or the tweened position
+  Src modelNormal();     // NORMAL0, or the tweened normal
+  int blendWeights();    // weight of matrix i in component i (the last: 1 - the others)
+  int blendOffsets();    // indexed: table offset of matrix i in component i
+  // Column `col` of blended matrix `matrix` (its normal matrix with `normal`).
+  Src blendColumn(int matrix, int col, bool normal, const Matrix& nonIndexed);
+  int blendedCameraPosition();
+  int blendedCameraNormal();
   Src viewerDirection();  // V: vertex -> viewer
   int reflectionVector();  // R = E - 2(N·E)N, E = normalize(P)
   int sphereMapCoords();   // (u, v, 0, 0)
@@ -103,6 +139,10 @@ class Builder {
   const DeviceState& st_;
   const FixedFunctionVertexConfig& cfg_;
   Matrix worldView_;
+  Blend blend_ = Blend::None;
+  int blendMatrices_ = 0;  // Blend::Weights: matrices blended (1-4)
+  bool indexed_ = false;   // Blend::Weights: matrices chosen by BLENDINDICES
+  int weights_ = -1, offsets_ = -1, tableBase_ = -1, modelPos_ = -1, modelNormal_ = -1;
   Program p_;
   int pos_ = -1, normal_ = -1, reflect_ = -1, sphere_ = -1, viewer_ = -1;
   // Lighting accumulators (rgb).
@@ -110,7 +150,127 @@ class Builder {
   Src specularSource_{};
 };
 
+Src Builder::modelPosition() {
+  if (blend_ != Blend::Tween || !cfg_.hasPosition1) return in(kVertexInPosition);
+  if (modelPos_ < 0) {
+    // POSITION0 * (1 - t) + POSITION1 * t = POSITION0 + t * (POSITION1 - POSITION0)
+    modelPos_ = p_.newTemp();
+    emit(Op::Sub, td(modelPos_), in(kVertexInPosition1), in(kVertexInPosition));
+    emit(Op::Mad, td(modelPos_), t(modelPos_), k(rsF(RS_TWEENFACTOR)), in(kVertexInPosition));
+  }
+  return t(modelPos_);
+}
+
+Src Builder::modelNormal() {
+  if (blend_ != Blend::Tween || !cfg_.hasNormal1) return in(kVertexInNormal);
+  if (modelNormal_ < 0) {
+    modelNormal_ = p_.newTemp();
+    emit(Op::Sub, td(modelNormal_, kMaskXYZ), in(kVertexInNormal1), in(kVertexInNormal));
+    emit(Op::Mad, td(modelNormal_, kMaskXYZ), t(modelNormal_), k(rsF(RS_TWEENFACTOR)),
+         in(kVertexInNormal));
+  }
+  return t(modelNormal_);
+}
+
+int Builder::blendWeights() {
+  if (weights_ >= 0) return weights_;
+  weights_ = p_.newTemp();
+  const int n = blendMatrices_ - 1;  // weights read from the vertex
+  if (n == 0) {
+    emit(Op::Mov, td(weights_, kMaskX), k(1.0f));
+    return weights_;
+  }
+  emit(Op::Mov, td(weights_, uint8_t((1u << n) - 1)), in(kVertexInBlendWeight));
+  Vec4 firstN(0, 0, 0, 0);
+  for (int i = 0; i < n; ++i) firstN[i] = 1;
+  const uint8_t last = uint8_t(1u << n);
+  emit(Op::Dp4, td(weights_, last), in(kVertexInBlendWeight), k(firstN));
+  emit(Op::Add, td(weights_, last), t(weights_, swz(n, n, n, n), SrcMod::Neg), k(1.0f));
+  return weights_;
+}
+
+int Builder::blendOffsets() {
+  if (offsets_ >= 0) return offsets_;
+  // The table: World(m) * View and its normal matrix for all 256 matrices.
+  tableBase_ = int(p_.immediates.size());
+  for (int m = 0; m < kMaxWorldMatrices; ++m) {
+    const Matrix wv = st_.worldMatrix(m) * st_.view;
+    const Matrix nm = normalMatrix(wv);
+    for (int j = 0; j < 4; ++j) p_.immediates.push_back(column(wv, j));
+    for (int j = 0; j < 3; ++j) p_.immediates.push_back(column(nm, j));
+  }
+  // D3DCOLOR indices arrive as byte/255 in D3DCOLOR's component order (x = bits 16-23);
+  // UBYTE4 as the bytes. Indices outside 0-255 (float elements) are clamped.
+  offsets_ = p_.newTemp();
+  const float scale = cfg_.blendIndicesType == DECLTYPE_D3DCOLOR ? 255.0f : 1.0f;
+  emit(Op::Mul, td(offsets_), in(kVertexInBlendIndices), k(scale));
+  emit(Op::Round, td(offsets_), t(offsets_));
+  emit(Op::Max, td(offsets_), t(offsets_), k(0.0f));
+  emit(Op::Min, td(offsets_), t(offsets_), k(float(kMaxWorldMatrices - 1)));
+  emit(Op::Mul, td(offsets_), t(offsets_), k(float(kTableStride)));
+  return offsets_;
+}
+
+Src Builder::blendColumn(int matrix, int col, bool normal, const Matrix& nonIndexed) {
+  if (!indexed_) return k(column(nonIndexed, col));
+  Src s = reg(RegFile::Imm, tableBase_ + (normal ? 4 : 0) + col);
+  s.rel = RelMode::Temp;
+  s.relReg = uint16_t(blendOffsets());
+  s.relComp = uint8_t(matrix);
+  return s;
+}
+
+// P = Σ w_i * (position * World(i) * View), all four components (w stays 1 for
+// affine matrices, as the weights sum to 1).
+int Builder::blendedCameraPosition() {
+  const int p = p_.newTemp(), x = p_.newTemp();
+  if (blend_ == Blend::Tween) {
+    for (int j = 0; j < 4; ++j)
+      emit(Op::Dp4, td(p, uint8_t(1 << j)), modelPosition(), k(column(worldView_, j)));
+    return p;
+  }
+  const int w = blendWeights();
+  if (indexed_) blendOffsets();
+  for (int i = 0; i < blendMatrices_; ++i) {
+    const Matrix wv = indexed_ ? Matrix{} : st_.worldMatrix(i) * st_.view;
+    const int dst = i == 0 ? p : x;
+    for (int j = 0; j < 4; ++j)
+      emit(Op::Dp4, td(dst, uint8_t(1 << j)), in(kVertexInPosition), blendColumn(i, j, false, wv));
+    if (i == 0)
+      emit(Op::Mul, td(p), t(p), t(w, swz(0, 0, 0, 0)));
+    else
+      emit(Op::Mad, td(p), t(x), t(w, swz(i, i, i, i)), t(p));
+  }
+  return p;
+}
+
+// N = Σ w_i * (normal * inverse transpose(World(i) * View)), w = 0.
+int Builder::blendedCameraNormal() {
+  const int n = p_.newTemp(), x = p_.newTemp();
+  if (blend_ == Blend::Tween) {
+    const Matrix nm = normalMatrix(worldView_);
+    for (int j = 0; j < 3; ++j)
+      emit(Op::Dp3, td(n, uint8_t(1 << j)), modelNormal(), k(column(nm, j)));
+  } else {
+    const int w = blendWeights();
+    if (indexed_) blendOffsets();
+    for (int i = 0; i < blendMatrices_; ++i) {
+      const Matrix nm = indexed_ ? Matrix{} : normalMatrix(st_.worldMatrix(i) * st_.view);
+      const int dst = i == 0 ? n : x;
+      for (int j = 0; j < 3; ++j)
+        emit(Op::Dp3, td(dst, uint8_t(1 << j)), in(kVertexInNormal), blendColumn(i, j, true, nm));
+      if (i == 0)
+        emit(Op::Mul, td(n, kMaskXYZ), t(n), t(w, swz(0, 0, 0, 0)));
+      else
+        emit(Op::Mad, td(n, kMaskXYZ), t(x), t(w, swz(i, i, i, i)), t(n));
+    }
+  }
+  emit(Op::Mov, td(n, kMaskW), k(0.0f));
+  return n;
+}
+
 int Builder::cameraPosition() {
+  if (pos_ < 0 && blend_ != Blend::None) pos_ = blendedCameraPosition();
   if (pos_ < 0) {
     pos_ = p_.newTemp();
     for (int j = 0; j < 3; ++j)
@@ -122,13 +282,15 @@ int Builder::cameraPosition() {
 
 int Builder::cameraNormal() {
   if (normal_ >= 0) return normal_;
-  int n = p_.newTemp();
+  int n = blend_ != Blend::None && cfg_.hasNormal ? blendedCameraNormal() : p_.newTemp();
   if (cfg_.hasNormal) {
-    // Row vector times the inverse transpose: component j = dp3(n, column j).
-    Matrix nm = normalMatrix(worldView_);
-    for (int j = 0; j < 3; ++j)
-      emit(Op::Dp3, td(n, uint8_t(1 << j)), in(kVertexInNormal), k(column(nm, j)));
-    emit(Op::Mov, td(n, kMaskW), k(0.0f));
+    if (blend_ == Blend::None) {
+      // Row vector times the inverse transpose: component j = dp3(n, column j).
+      Matrix nm = normalMatrix(worldView_);
+      for (int j = 0; j < 3; ++j)
+        emit(Op::Dp3, td(n, uint8_t(1 << j)), in(kVertexInNormal), k(column(nm, j)));
+      emit(Op::Mov, td(n, kMaskW), k(0.0f));
+    }
     if (rs(RS_NORMALIZENORMALS)) {
       int u = normalize3(t(n));
       emit(Op::Mov, td(u, kMaskW), k(0.0f));
@@ -188,6 +350,12 @@ Src Builder::materialSource(RenderState sourceState, Color4 materialColor) {
 void Builder::emitPosition() {
   if (cfg_.pretransformed) {
     emit(Op::Mov, out(kVertexOutPosition), in(kVertexInPosition));
+    return;
+  }
+  if (blend_ != Blend::None) {
+    const int p = cameraPosition();
+    for (int j = 0; j < 4; ++j)
+      emit(Op::Dp4, out(kVertexOutPosition, uint8_t(1 << j)), t(p), k(column(st_.projection, j)));
     return;
   }
   Matrix wvp = worldView_ * st_.projection;

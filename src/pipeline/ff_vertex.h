@@ -20,6 +20,8 @@ enum VertexInput : int {
   kVertexInDiffuse = 5,
   kVertexInSpecular = 6,
   kVertexInTex0 = 7,  // ..14: texture coordinate sets 0..7
+  kVertexInPosition1 = 15,  // POSITION1 and NORMAL1: the second position and normal
+  kVertexInNormal1 = 16,    // that vertex tweening blends toward
   kVertexInputCount = 17,
 };
 
@@ -41,6 +43,11 @@ struct FixedFunctionVertexConfig {
   bool hasNormal = false, hasDiffuse = false, hasSpecular = false;
   bool hasPSize = false;
   std::array<int, 8> texCoordDims{};  // components present in each input texcoord set (0 = absent)
+  // Vertex blending: BLENDWEIGHT components present (0 = absent), the DECLTYPE of the
+  // BLENDINDICES element (-1 = absent), and the tweening partners POSITION1 / NORMAL1.
+  int blendWeightCount = 0;
+  int blendIndicesType = -1;
+  bool hasPosition1 = false, hasNormal1 = false;
 };
 
 exec::Program buildFixedFunctionVertexProgram(const DeviceState& state,

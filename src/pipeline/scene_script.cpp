@@ -118,14 +118,15 @@ std::string enumNames(d3d::EnumKind kind) {
 
 // fvf element order in a vertex: position, normal, psize, diffuse, specular, texcoords.
 struct FvfLayout {
-  int positionFloats = 4;  // xyz 3, xyzrhw 4, xyzw 4
+  int positionFloats = 4;  // xyz 3, xyzrhw 4, xyzw 4, xyzbN 3 + N (betas included)
   uint32_t positionCode = d3d::FVF_XYZRHW;
+  uint32_t lastBeta = 0;  // D3DFVF_LASTBETA_UBYTE4 / _D3DCOLOR: the last beta is a DWORD
   bool normal = false, psize = false, diffuse = true, specular = false;
   std::vector<int> texDims{2};
   std::string text = "xyzrhw diffuse tex 2";
 
   uint32_t code() const {
-    uint32_t c = positionCode;
+    uint32_t c = positionCode | lastBeta;
     if (normal) c |= d3d::FVF_NORMAL;
     if (psize) c |= d3d::FVF_PSIZE;
     if (diffuse) c |= d3d::FVF_DIFFUSE;
@@ -659,7 +660,8 @@ class Parser {
 
   // ---- fvf ELEMENTS...
   void fvf() {
-    need(1, 100, "xyz|xyzrhw|xyzw [normal] [psize] [diffuse] [specular] [tex D0 D1 ...]");
+    need(1, 100, "xyz|xyzrhw|xyzw|xyzb1-5 [lastbeta_ubyte4|lastbeta_d3dcolor] [normal] [psize] "
+                 "[diffuse] [specular] [tex D0 D1 ...]");
     if (!vertices_.empty() || !indices_.empty())
       err(tok_[0].col, "vertices are pending; draw them before changing the fvf");
     FvfLayout f;
@@ -670,11 +672,24 @@ class Parser {
     for (size_t i = 1; i <= argc(); ++i) {
       std::string e = lower(arg(i));
       if (!seen.insert(e).second) errAt(i, fmt::format("'{}' is given twice", arg(i)));
-      if (e == "xyz" || e == "xyzrhw" || e == "xyzw") {
-        if (position) errAt(i, "only one position element (xyz, xyzrhw or xyzw) is allowed");
+      const bool blendPosition = e.size() == 5 && e.starts_with("xyzb");
+      if (e == "xyz" || e == "xyzrhw" || e == "xyzw" || blendPosition) {
+        if (position) errAt(i, "only one position element (xyz, xyzrhw, xyzw or xyzb1-5) is allowed");
         position = true;
         f.positionFloats = e == "xyz" ? 3 : 4;
         f.positionCode = e == "xyz" ? d3d::FVF_XYZ : e == "xyzw" ? d3d::FVF_XYZW : d3d::FVF_XYZRHW;
+        if (blendPosition) {
+          const int betas = e[4] - '0';
+          if (betas < 1 || betas > 5)
+            errAt(i, fmt::format("'{}': D3DFVF_XYZBn has 1 to 5 betas (xyzb1-xyzb5)", arg(i)));
+          f.positionFloats = 3 + betas;
+          f.positionCode = d3d::FVF_XYZB1 + 2 * uint32_t(betas - 1);  // 0x006, 0x008 ... 0x00e
+        }
+      } else if (e == "lastbeta_ubyte4" || e == "lastbeta_d3dcolor") {
+        if (d3d::fvfBetaCount(f.positionCode) == 0)
+          errAt(i, fmt::format("'{}' needs an xyzb1-xyzb5 position before it", arg(i)));
+        if (f.lastBeta) errAt(i, "only one of lastbeta_ubyte4 and lastbeta_d3dcolor is allowed");
+        f.lastBeta = e == "lastbeta_ubyte4" ? d3d::FVF_LASTBETA_UBYTE4 : d3d::FVF_LASTBETA_D3DCOLOR;
       } else if (e == "normal") {
         f.normal = true;
       } else if (e == "psize") {
@@ -692,12 +707,14 @@ class Parser {
         if (f.texDims.empty())
           errAt(i, "expected a dimension (1-4) for each texture coordinate set after tex");
       } else {
-        errAt(i, fmt::format("unknown vertex element '{}' (expected xyz, xyzrhw, xyzw, normal, "
-                             "psize, diffuse, specular or tex)",
+        errAt(i, fmt::format("unknown vertex element '{}' (expected xyz, xyzrhw, xyzw, xyzb1-5, "
+                             "lastbeta_ubyte4, lastbeta_d3dcolor, normal, psize, diffuse, "
+                             "specular or tex)",
                              arg(i)));
       }
     }
-    if (!position) err(tok_[1].col, "expected a position element first (xyz, xyzrhw or xyzw)");
+    if (!position)
+      err(tok_[1].col, "expected a position element first (xyz, xyzrhw, xyzw or xyzb1-5)");
     if (f.normal && f.positionCode == d3d::FVF_XYZRHW)
       err(tok_[1].col, "normal cannot be used with xyzrhw (pretransformed vertices are not lit)");
     std::string text;
@@ -726,7 +743,19 @@ class Parser {
       std::memcpy(b, &u, 4);
       vertices_.insert(vertices_.end(), b, b + 4);
     };
-    for (int k = 0; k < fvf_.positionFloats; ++k) putFloat(number(at++, "the position"));
+    const int positionFloats = fvf_.positionFloats - (fvf_.lastBeta ? 1 : 0);
+    for (int k = 0; k < positionFloats; ++k)
+      putFloat(number(at++, k < 3 ? "the position" : "a blend weight"));
+    if (fvf_.lastBeta) {
+      // Four matrix indices packed in a DWORD, stored as written (little endian).
+      auto v = toInt(arg(at));
+      if (!v || *v < 0 || *v > 0xffffffffll)
+        errAt(at, fmt::format("expected the packed matrix indices as a DWORD (e.g. 0x00000301), "
+                              "got '{}'",
+                              arg(at)));
+      putU32(uint32_t(*v));
+      ++at;
+    }
     if (fvf_.normal)
       for (int k = 0; k < 3; ++k) putFloat(number(at++, "the normal"));
     if (fvf_.psize) putFloat(number(at++, "the point size"));
@@ -805,11 +834,26 @@ class Parser {
 
   // ---- transform WORLD|VIEW|PROJECTION|TEXTUREn m11 ... m44
   void transform() {
-    need(17, 17, "WORLD|VIEW|PROJECTION|TEXTUREn m11 m12 ... m44 (16 numbers)");
+    need(17, 17, "WORLD|VIEW|PROJECTION|TEXTUREn|WORLDn m11 m12 ... m44 (16 numbers)");
     auto type = d3d::parseEnum(d3d::EnumKind::TransformType, arg(1));
+    if (!type) {
+      // WORLDn (D3DTS_WORLDMATRIX(n)), n = 0-255.
+      std::string name = lower(arg(1));
+      if (name.starts_with("d3dts_")) name.erase(0, 6);
+      const std::string_view digits = std::string_view(name).substr(std::min<size_t>(name.size(), 5));
+      if (name.starts_with("world") && !digits.empty() &&
+          digits.find_first_not_of("0123456789") == std::string_view::npos) {
+        auto n = toInt(digits);
+        if (n) {
+          if (*n > 255)
+            errAt(1, fmt::format("world matrix index {} is out of range (WORLD0-WORLD255)", *n));
+          type = d3d::worldMatrix(int(*n));
+        }
+      }
+    }
     if (!type)
-      errAt(1, fmt::format("unknown transform '{}' (expected WORLD, VIEW, PROJECTION or "
-                           "TEXTURE0-7)",
+      errAt(1, fmt::format("unknown transform '{}' (expected WORLD, VIEW, PROJECTION, "
+                           "TEXTURE0-7 or WORLD0-255)",
                            arg(1)));
     SetTransform t{*type, {}};
     for (int k = 0; k < 16; ++k)

@@ -1,5 +1,7 @@
 #include "refx/pipeline/state.h"
 
+#include "refx/core/diagnostics.h"
+
 namespace refx {
 
 using namespace d3d;
@@ -101,15 +103,33 @@ VertexDeclaration VertexDeclaration::fromFVF(uint32_t fvf) {
     d.elements.push_back(VertexElement{0, off, type, 0, usage, index});
     off = static_cast<uint16_t>(off + declTypeSize(type));
   };
-  uint32_t pos = fvf & FVF_POSITION_MASK;
+  const uint32_t pos = fvf & FVF_POSITION_MASK;
+  const int betas = fvfBetaCount(fvf);
+  const uint32_t lastBeta = fvf & (FVF_LASTBETA_UBYTE4 | FVF_LASTBETA_D3DCOLOR);
+  if (pos != 0 && pos != FVF_XYZRHW && pos != FVF_XYZW && pos != FVF_XYZ && betas == 0)
+    fail("FVF 0x{:x}: position bits 0x{:x} are not a D3DFVF position type (XYZ, XYZRHW, XYZW, "
+         "XYZB1-XYZB5)", fvf, pos);
+  if (lastBeta == (FVF_LASTBETA_UBYTE4 | FVF_LASTBETA_D3DCOLOR))
+    fail("FVF 0x{:x}: D3DFVF_LASTBETA_UBYTE4 and D3DFVF_LASTBETA_D3DCOLOR exclude each other", fvf);
+  if (lastBeta && betas == 0)
+    fail("FVF 0x{:x}: D3DFVF_LASTBETA_{} needs a position with betas (XYZB1-XYZB5)", fvf,
+         lastBeta == FVF_LASTBETA_UBYTE4 ? "UBYTE4" : "D3DCOLOR");
   if (pos == FVF_XYZRHW) {
     add(DECLTYPE_FLOAT4, DECLUSAGE_POSITIONT, 0);
   } else if (pos == FVF_XYZW) {
     add(DECLTYPE_FLOAT4, DECLUSAGE_POSITION, 0);
   } else if (pos != 0) {
     add(DECLTYPE_FLOAT3, DECLUSAGE_POSITION, 0);
-    int weights = pos == FVF_XYZ ? 0 : (int(pos) - int(FVF_XYZ)) / 2;
-    if (weights > 0) add(declTypeForDims(std::min(weights, 4)), DECLUSAGE_BLENDWEIGHT, 0);
+    // The last beta holds four packed matrix indices with a LASTBETA flag; XYZB5 always
+    // ends with them, since a BLENDWEIGHT element has at most four floats.
+    const bool indices = betas > 0 && (lastBeta != 0 || betas == 5);
+    const int weights = betas - (indices ? 1 : 0);
+    if (weights > 0) add(declTypeForDims(weights), DECLUSAGE_BLENDWEIGHT, 0);
+    if (indices)
+      add(lastBeta == FVF_LASTBETA_UBYTE4     ? DECLTYPE_UBYTE4
+          : lastBeta == FVF_LASTBETA_D3DCOLOR ? DECLTYPE_D3DCOLOR
+                                              : DECLTYPE_FLOAT1,
+          DECLUSAGE_BLENDINDICES, 0);
   }
   if (fvf & FVF_NORMAL) add(DECLTYPE_FLOAT3, DECLUSAGE_NORMAL, 0);
   if (fvf & FVF_PSIZE) add(DECLTYPE_FLOAT1, DECLUSAGE_PSIZE, 0);

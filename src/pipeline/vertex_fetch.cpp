@@ -11,10 +11,11 @@ using namespace d3d;
 
 int inputRegisterForElement(const VertexElement& e) {
   switch (e.usage) {
-    case DECLUSAGE_POSITION: case DECLUSAGE_POSITIONT: return e.usageIndex == 0 ? kVertexInPosition : 15;
+    case DECLUSAGE_POSITION: case DECLUSAGE_POSITIONT:
+      return e.usageIndex == 0 ? kVertexInPosition : kVertexInPosition1;
     case DECLUSAGE_BLENDWEIGHT: return kVertexInBlendWeight;
     case DECLUSAGE_BLENDINDICES: return kVertexInBlendIndices;
-    case DECLUSAGE_NORMAL: return e.usageIndex == 0 ? kVertexInNormal : 16;
+    case DECLUSAGE_NORMAL: return e.usageIndex == 0 ? kVertexInNormal : kVertexInNormal1;
     case DECLUSAGE_PSIZE: return kVertexInPSize;
     case DECLUSAGE_COLOR: return e.usageIndex == 0 ? kVertexInDiffuse : e.usageIndex == 1 ? kVertexInSpecular : -1;
     case DECLUSAGE_TEXCOORD: return e.usageIndex < 8 ? kVertexInTex0 + e.usageIndex : -1;

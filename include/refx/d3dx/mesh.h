@@ -15,6 +15,10 @@ namespace refx::d3dx {
 // from Mesh::fvf with VertexDeclaration::fromFVF.
 namespace fvf {
 constexpr uint32_t XYZ = 0x002, XYZRHW = 0x004, XYZW = 0x4002, POSITION_MASK = 0x400e;
+// XYZBn: x y z then n = 1-5 betas; with a LASTBETA flag the last beta is a DWORD of
+// four matrix indices (the BLENDINDICES of indexed vertex blending).
+constexpr uint32_t XYZB1 = 0x006, XYZB2 = 0x008, XYZB3 = 0x00a, XYZB4 = 0x00c, XYZB5 = 0x00e;
+constexpr uint32_t LASTBETA_UBYTE4 = 0x1000, LASTBETA_D3DCOLOR = 0x8000;
 constexpr uint32_t NORMAL = 0x010, PSIZE = 0x020, DIFFUSE = 0x040, SPECULAR = 0x080;
 constexpr uint32_t TEXCOUNT_MASK = 0xf00, TEXCOUNT_SHIFT = 8;
 // D3DFVF_TEXn.
@@ -38,6 +42,9 @@ uint32_t stride(uint32_t fvf);
 // -1 where the element is absent.
 struct FVFLayout {
   int position = -1, normal = -1, psize = -1, diffuse = -1, specular = -1;
+  // Blend weights (floats after x y z) and the packed matrix indices (the last beta of
+  // an XYZB5 or LASTBETA_* position); -1 / 0 when absent.
+  int blendWeights = -1, blendWeightCount = 0, blendIndices = -1;
   int texCoord[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
   int texDims[8] = {};
   uint32_t stride = 0;

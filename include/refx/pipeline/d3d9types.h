@@ -117,6 +117,13 @@ enum PrimitiveType : uint32_t { PT_POINTLIST = 1, PT_LINELIST, PT_LINESTRIP, PT_
 // D3DTRANSFORMSTATETYPE
 enum TransformType : uint32_t { TS_VIEW = 2, TS_PROJECTION = 3, TS_TEXTURE0 = 16,
   TS_WORLD = 256 };
+// D3DTS_WORLDMATRIX(n): the 256 vertex-blending world matrices, 256-511.
+constexpr int kMaxWorldMatrices = 256;
+constexpr uint32_t worldMatrix(int n) { return TS_WORLD + uint32_t(n); }
+
+// D3DVERTEXBLENDFLAGS (D3DRS_VERTEXBLEND)
+enum VertexBlend : uint32_t { VBF_DISABLE = 0, VBF_1WEIGHTS = 1, VBF_2WEIGHTS = 2,
+  VBF_3WEIGHTS = 3, VBF_TWEENING = 255, VBF_0WEIGHTS = 256 };
 
 // D3DCLEAR_*
 enum ClearFlags : uint32_t { CLEAR_TARGET = 1, CLEAR_ZBUFFER = 2, CLEAR_STENCIL = 4 };
@@ -127,7 +134,14 @@ enum FVF : uint32_t {
   FVF_XYZB3 = 0x00a, FVF_XYZB4 = 0x00c, FVF_XYZB5 = 0x00e, FVF_XYZW = 0x4002,
   FVF_POSITION_MASK = 0x400e, FVF_NORMAL = 0x010, FVF_PSIZE = 0x020, FVF_DIFFUSE = 0x040,
   FVF_SPECULAR = 0x080, FVF_TEXCOUNT_MASK = 0xf00, FVF_TEXCOUNT_SHIFT = 8,
+  // The last beta of XYZB1-5 holds four 8-bit matrix indices (indexed vertex blending).
+  FVF_LASTBETA_UBYTE4 = 0x1000, FVF_LASTBETA_D3DCOLOR = 0x8000,
 };
+// Number of betas (floats after x y z) of an XYZB1-XYZB5 position; 0 for the others.
+constexpr int fvfBetaCount(uint32_t fvf) {
+  const uint32_t pos = fvf & FVF_POSITION_MASK;
+  return pos >= FVF_XYZB1 && pos <= FVF_XYZB5 ? int(pos - FVF_XYZB1) / 2 + 1 : 0;
+}
 // D3DFVF_TEXCOORDSIZEn(i): bits 16+2i. 0 = 2 floats, 1 = 3, 2 = 4, 3 = 1.
 constexpr uint32_t fvfTexCoordSize(int dims, int index) {
   uint32_t code = dims == 1 ? 3u : dims == 3 ? 1u : dims == 4 ? 2u : 0u;
@@ -161,6 +175,7 @@ enum class EnumKind {
   TextureAddress, TextureFilter, LightType, PrimitiveType, TransformType, Bool,
   TexCoordIndexFlags, TextureTransformFlags, ColorWrite, Format,
   Wrap,  // D3DWRAP_U/V/W, D3DWRAPCOORD_0-3 (RS_WRAPn)
+  VertexBlend,  // D3DVBF_* (RS_VERTEXBLEND)
 };
 // Canonical name without prefix ("DOTPRODUCT3"); empty when unknown.
 std::string_view enumName(EnumKind kind, uint32_t value);

@@ -95,7 +95,10 @@ struct DeviceState {
   std::array<std::array<uint32_t, d3d::kTextureStageStateCount>, d3d::kMaxTextureStages> stageStates{};
   std::array<std::array<uint32_t, d3d::kSamplerStateCount>, d3d::kMaxSamplers> samplerStates{};
   std::array<TexturePtr, d3d::kMaxSamplers> textures{};
+  // `world` is D3DTS_WORLDMATRIX(0) (D3DTS_WORLD); worldMatrix(n) reaches all 256.
   Matrix world = Matrix::identity(), view = Matrix::identity(), projection = Matrix::identity();
+  // D3DTS_WORLDMATRIX(1..255), the further vertex-blending matrices (identity by default).
+  std::vector<Matrix> blendWorlds = std::vector<Matrix>(d3d::kMaxWorldMatrices - 1, Matrix::identity());
   std::array<Matrix, 8> textureTransforms{};
   std::array<Light, 8> lights{};
   std::array<bool, 8> lightEnabled{};
@@ -126,6 +129,9 @@ struct DeviceState {
     return bitsFloat(stageStates[stage][s]);
   }
   uint32_t samp(int sampler, d3d::SamplerStateType s) const { return samplerStates[sampler][s]; }
+  // D3DTS_WORLDMATRIX(n), n in [0, 255].
+  const Matrix& worldMatrix(int n) const { return n == 0 ? world : blendWorlds[size_t(n - 1)]; }
+  Matrix& worldMatrix(int n) { return n == 0 ? world : blendWorlds[size_t(n - 1)]; }
 };
 
 }  // namespace refx
