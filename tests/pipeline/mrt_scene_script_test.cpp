@@ -2,6 +2,8 @@
 // `# expect@N X Y r g b a [tolerance]` (docs/scene_script_render_targets.md).
 #include <gtest/gtest.h>
 
+#include "error_helpers.h"
+
 #include <string>
 
 #include "refx/core/diagnostics.h"
@@ -9,18 +11,10 @@
 #include "refx/pipeline/scene_script.h"
 
 using namespace refx;
+using namespace refx::test;
 using namespace refx::scene;
 
 namespace {
-
-std::string parseError(std::string_view text) {
-  try {
-    parseSceneScript(text, "s.scene");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 TEST(SceneRenderTargets, ParsesTheCommandAndTargetedExpectations) {
   SceneScript s = parseSceneScript(

@@ -4,6 +4,8 @@
 // worked out by hand from D3D9's semantics.
 #include <gtest/gtest.h>
 
+#include "error_helpers.h"
+
 #include <string>
 
 #include "device_helpers.h"
@@ -51,15 +53,6 @@ void expectPixel(const Device& dev, int x, int y, int r, int g, int b, int a, in
   EXPECT_NEAR(channel(p, 8), g, tol) << "green at " << x << "," << y;
   EXPECT_NEAR(channel(p, 0), b, tol) << "blue at " << x << "," << y;
   EXPECT_NEAR(channel(p, 24), a, tol) << "alpha at " << x << "," << y;
-}
-
-std::string errorOf(auto&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 }  // namespace

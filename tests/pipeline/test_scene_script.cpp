@@ -3,6 +3,8 @@
 // reference/scene-script.md and D3D9's definitions.
 #include <gtest/gtest.h>
 
+#include "error_helpers.h"
+
 #include <cmath>
 #include <cstring>
 #include <unistd.h>
@@ -11,6 +13,7 @@
 #include "refx/pipeline/scene_script.h"
 
 using namespace refx;
+using namespace refx::test;
 using namespace refx::scene;
 
 namespace {
@@ -20,15 +23,6 @@ const T& nth(const SceneScript& s, size_t index) {
   const T* found = std::get_if<T>(&s.commands.at(index).action);
   if (!found) throw std::runtime_error("command " + std::to_string(index) + " has another type");
   return *found;
-}
-
-std::string parseError(std::string_view text) {
-  try {
-    parseSceneScript(text, "s.scene");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 float readFloat(const std::vector<uint8_t>& bytes, size_t offset) {

@@ -4,6 +4,8 @@
 // default, as effects and state blocks set it.
 #include <gtest/gtest.h>
 
+#include "error_helpers.h"
+
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -15,6 +17,7 @@
 #include "refx/pipeline/scene_script.h"
 
 using namespace refx;
+using namespace refx::test;
 using namespace refx::d3d;
 
 namespace {
@@ -29,16 +32,6 @@ constexpr ClassInfo kClasses[] = {
     {StateClass::TextureStage, EnumKind::TextureStageState, kTextureStageStateCount},
     {StateClass::Sampler, EnumKind::SamplerState, kSamplerStateCount},
 };
-
-template <typename F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -2,6 +2,8 @@
 // `transform WORLDn` (D3DTS_WORLDMATRIX(n)).
 #include <gtest/gtest.h>
 
+#include "error_helpers.h"
+
 #include <cstring>
 #include <string>
 
@@ -12,15 +14,7 @@ namespace refx {
 namespace {
 
 using namespace scene;
-
-std::string parseError(std::string_view text) {
-  try {
-    parseSceneScript(text, "s.scene");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using namespace test;
 
 const Draw& onlyDraw(const SceneScript& s) {
   for (const auto& c : s.commands)
