@@ -3,6 +3,7 @@
 // value, so a parsed script only fails at run time for I/O, device limits and shaders.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -150,9 +151,13 @@ struct SceneOutput {
   TexturePtr target;
   std::shared_ptr<DepthStencilSurface> depthStencil;
 };
+// Decides before each command whether it runs (true) or is skipped (false).
+using SceneCommandFilter = std::function<bool(const scene::Command&)>;
 // Creates the render target (all texels 0) and D24S8 surface, attaches them to `device`
-// and runs every command in order.
-SceneOutput runSceneScript(const SceneScript& script, Device& device);
+// and runs every command in order, or those `filter` lets through (limits on the work a
+// script may do, e.g. when fuzzing).
+SceneOutput runSceneScript(const SceneScript& script, Device& device,
+                           const SceneCommandFilter& filter = {});
 
 // Reads pixel (x, y) of a render target as 0-255 r, g, b, a.
 void readTargetPixel(const Texture& target, int x, int y, int rgba[4]);
