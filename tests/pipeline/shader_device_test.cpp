@@ -260,6 +260,21 @@ TEST(ShaderDevice, Dx8VsdDeclarationMapsRegistersAndLoadsConstants) {
   expectPixel(*dev, 4, 4, 102, 102, 32, 255);
 }
 
+TEST(ShaderDevice, Dx8VsdConstWithNoRegistersLoadsNothing) {
+  // D3DVSD_CONST(4, 0) carries no data: c4 keeps the value set before, and c5 gets the
+  // one register of the D3DVSD_CONST(5, 1) after it.
+  auto dev = makeDevice(8, 8);
+  const float before[4] = {0.5f, 0.5f, 0.5f, 0.5f};
+  dev->setVertexShaderConstantF(4, before, 1);
+  const shader::VsDeclaration vsd = shader::parseVsDeclaration(
+      "DWORD dwDecl[] = { D3DVSD_STREAM(0), D3DVSD_REG(0, D3DVSDT_FLOAT3), D3DVSD_CONST(4, 0),"
+      " D3DVSD_CONST(5, 1), 1.0f, 2.0f, 3.0f, 4.0f, D3DVSD_END() };",
+      "decl.h");
+  setVsdConstants(*dev, vsd);
+  EXPECT_EQ(dev->state().vsConstF[4], (Vec4{0.5f, 0.5f, 0.5f, 0.5f}));
+  EXPECT_EQ(dev->state().vsConstF[5], (Vec4{1, 2, 3, 4}));
+}
+
 TEST(ShaderDevice, ShaderDepthOutputReplacesInterpolatedDepth) {
   auto dev = makeDevice(8, 8);
   dev->setRenderState(d3d::RS_ZENABLE, d3d::ZB_TRUE);
