@@ -4,6 +4,7 @@
 // worked out by hand from D3D9's semantics.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "device_helpers.h"
@@ -273,6 +274,29 @@ TEST(ShaderDevice, Dx8VsdConstWithNoRegistersLoadsNothing) {
   setVsdConstants(*dev, vsd);
   EXPECT_EQ(dev->state().vsConstF[4], (Vec4{0.5f, 0.5f, 0.5f, 0.5f}));
   EXPECT_EQ(dev->state().vsConstF[5], (Vec4{1, 2, 3, 4}));
+}
+
+TEST(ShaderDevice, TrianglesWithUnrepresentablePositionsAreNotDrawn) {
+  // Pretransformed vertices are not clipped: a triangle with a NaN or a 1e30 screen
+  // coordinate cannot be set up in fixed point and draws nothing; the pixel keeps the
+  // clear color, and a normal triangle after them still draws.
+  auto dev = makeDevice(8, 8);
+  dev->clear(d3d::CLEAR_TARGET, 0xff000000, 1, 0);
+  dev->setFVF(d3d::FVF_XYZRHW | d3d::FVF_DIFFUSE);
+  struct V {
+    float x, y, z, rhw;
+    uint32_t color;
+  };
+  const uint32_t red = 0xffff0000;
+  const V nan[3] = {{0, 0, 0.5f, 1, red}, {std::nanf(""), 0, 0.5f, 1, red}, {0, 16, 0.5f, 1, red}};
+  const V huge[3] = {{0, 0, 0.5f, 1, red}, {1e30f, 0, 0.5f, 1, red}, {0, 1e30f, 0.5f, 1, red}};
+  dev->drawPrimitiveUP(d3d::PT_TRIANGLELIST, 1, nan, sizeof(V));
+  dev->drawPrimitiveUP(d3d::PT_TRIANGLELIST, 1, huge, sizeof(V));
+  expectPixel(*dev, 1, 1, 0, 0, 0, 255);
+  const V green[3] = {{0, 0, 0.5f, 1, 0xff00ff00}, {16, 0, 0.5f, 1, 0xff00ff00},
+                      {0, 16, 0.5f, 1, 0xff00ff00}};
+  dev->drawPrimitiveUP(d3d::PT_TRIANGLELIST, 1, green, sizeof(V));
+  expectPixel(*dev, 1, 1, 0, 255, 0, 255);
 }
 
 TEST(ShaderDevice, ShaderDepthOutputReplacesInterpolatedDepth) {
