@@ -451,6 +451,17 @@ bool Validator::checkOpcode(const Instruction& in, const OpcodeRule*& rule) {
     error(in, "{} is not a {} instruction", op(in), name_);
     return false;
   }
+  // Specific-control bits 23:16 hold the comparison of ifc/breakc/setp and, from SM2
+  // on, texld's project (texldp) or bias (texldb) bit; they are reserved (0) elsewhere.
+  const bool compares = in.opcode == O::IfC || in.opcode == O::BreakC || in.opcode == O::SetP;
+  const bool controlOk = compares                         ? in.control >= 1 && in.control <= 6
+                         : in.opcode == O::Tex && v_.major >= 2 ? in.control <= 2
+                                                                : in.control == 0;
+  if (!controlOk) {
+    error(in, "{} has specific-control bits 0x{:02x}, which {} does not define for it", op(in),
+          in.control, name_);
+    return false;
+  }
   if (rule->flags & OpNeedsCap) {
     bool ok = v_.isPixel() ? caps_.ps2xFlowControl : caps_.vs2xFlowControl;
     if (!ok) {

@@ -1236,3 +1236,24 @@ TEST(ValidatorSeeds, ShadersTheTextsRejectAreRejected) {
 
 }  // namespace
 }  // namespace refx::shader
+
+TEST(ValidatorTokens, ReservedSpecificControlBitsAreRejected) {
+  using namespace refx::shader;
+  // ps_1_1: tex t0; mul r0, t0, v0 with bits 23:16 = 0x39, which mul does not define
+  // (bytecode.md: instruction token bits 23:16 are opcode-specific controls).
+  const std::vector<uint32_t> mul = {0xFFFF0101, 0x00000042, 0xB00F0000, 0x00390005,
+                                     0x800F0000, 0xB0E40000, 0x90E40000, 0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(mul));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "mul has specific-control bits 0x39, which ps_1_1 does not define for it");
+  // ps_2_0: dcl_2d s0; dcl t0; texld r0, t0, s0 with project and bias bits both set (3).
+  const std::vector<uint32_t> texld = {0xFFFF0200, 0x0200001F, 0x90000000, 0xA00F0800,
+                                       0x0200001F, 0x80000000, 0xB00F0000, 0x03030042,
+                                       0x800F0000, 0xB0E40000, 0xA0E40800, 0x02000001,
+                                       0x800F0800, 0x80E40000, 0x0000FFFF};
+  EXPECT_FALSE(validate(decode(texld)).empty());
+  // The same with the project bit alone is texldp, which ps_2_0 has.
+  std::vector<uint32_t> texldp = texld;
+  texldp[7] = 0x03010042;
+  EXPECT_TRUE(validate(decode(texldp)).empty());
+}
