@@ -898,6 +898,8 @@ void Validator::checkDcl(const Instruction& in) {
     error(in, "dcl cannot declare {} in {}", reg(d.type, d.index), name_);
     return;
   }
+  // A declaration computes nothing: its destination token carries no shift.
+  if (d.shift) error(in, "dcl takes no shift (_x2, _d2 ...)");
   const RegisterRule* r = findRegisterRule(R_, d.type);
   if (!r) return;
   if (int(d.index) >= registerCount(*r)) {

@@ -1257,3 +1257,15 @@ TEST(ValidatorTokens, ReservedSpecificControlBitsAreRejected) {
   texldp[7] = 0x03010042;
   EXPECT_TRUE(validate(decode(texldp)).empty());
 }
+
+TEST(ValidatorTokens, DclTakesNoShift) {
+  using namespace refx::shader;
+  // vs_2_0: dcl_position v0 whose destination token has shift bits 27:24 = 0x9 (-7, a
+  // "_d128" no assembler can write); m4x4 oPos, v0, c0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x80000000, 0x990F0000,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "dcl takes no shift (_x2, _d2 ...)");
+}
