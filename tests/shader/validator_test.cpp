@@ -1269,3 +1269,15 @@ TEST(ValidatorTokens, DclTakesNoShift) {
   ASSERT_FALSE(d.empty());
   EXPECT_EQ(d[0].message, "dcl takes no shift (_x2, _d2 ...)");
 }
+
+TEST(ValidatorTokens, TextureTypeBelongsToSamplerDcls) {
+  using namespace refx::shader;
+  // vs_2_0: dcl_position v0 with bits 30:27 of its usage token = 8 (0xC0000000: the
+  // texture type field, which only a sampler dcl uses); m4x4 oPos, v0, c0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0xC0000000, 0x900F0000,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "dcl of v0 has a texture type; only samplers (s#) have one");
+}
