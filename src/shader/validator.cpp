@@ -462,6 +462,13 @@ bool Validator::checkOpcode(const Instruction& in, const OpcodeRule*& rule) {
           in.control, name_);
     return false;
   }
+  // Result modifier bits 23:20 of a destination: _sat, _pp and _centroid; bit 23 is
+  // undefined.
+  if (in.hasDst && (in.dst.resultMod & ~(ResultSaturate | ResultPartialPrecision | ResultCentroid))) {
+    error(in, "{} has result modifier bits 0x{:x}; only _sat, _pp and _centroid exist", op(in),
+          in.dst.resultMod);
+    return false;
+  }
   if (rule->flags & OpNeedsCap) {
     bool ok = v_.isPixel() ? caps_.ps2xFlowControl : caps_.vs2xFlowControl;
     if (!ok) {

@@ -1281,3 +1281,14 @@ TEST(ValidatorTokens, TextureTypeBelongsToSamplerDcls) {
   ASSERT_FALSE(d.empty());
   EXPECT_EQ(d[0].message, "dcl of v0 has a texture type; only samplers (s#) have one");
 }
+
+TEST(ValidatorTokens, UndefinedResultModifierBitsAreRejected) {
+  using namespace refx::shader;
+  // vs_1_1: mov oPos, v0 whose destination has result modifier bits 23:20 = 8 (defined:
+  // 1 _sat, 2 _pp, 4 _centroid).
+  const std::vector<uint32_t> tokens = {0xFFFE0101, 0x00000001, 0xC08F0000, 0x90E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "mov has result modifier bits 0x8; only _sat, _pp and _centroid exist");
+}
