@@ -928,6 +928,9 @@ void Validator::checkDcl(const Instruction& in) {
     declared_[key(d.type, d.index)] = 0xF;
     return;
   }
+  if (uint8_t(in.usage) > uint8_t(DeclUsage::Sample))
+    error(in, "dcl of {} has usage {}; D3DDECLUSAGE ends at 13 (sample)", reg(d.type, d.index),
+          int(in.usage));
   uint8_t& m = declared_[key(d.type, d.index)];
   if (m & d.writeMask) {
     // vs_3_0 outputs may share one o# with disjoint masks; anything else once.

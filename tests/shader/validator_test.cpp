@@ -1292,3 +1292,15 @@ TEST(ValidatorTokens, UndefinedResultModifierBitsAreRejected) {
   ASSERT_FALSE(d.empty());
   EXPECT_EQ(d[0].message, "mov has result modifier bits 0x8; only _sat, _pp and _centroid exist");
 }
+
+TEST(ValidatorTokens, DclUsageBeyondSampleIsRejected) {
+  using namespace refx::shader;
+  // vs_2_0: dcl v0 with usage 14 in its usage token (0x8000000E; D3DDECLUSAGE_SAMPLE = 13
+  // is the last); m4x4 oPos, v0, c0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x8000000E, 0x900F0000,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "dcl of v0 has usage 14; D3DDECLUSAGE ends at 13 (sample)");
+}
