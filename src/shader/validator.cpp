@@ -907,6 +907,7 @@ void Validator::checkDcl(const Instruction& in) {
   }
   // A declaration computes nothing: its destination token carries no shift.
   if (d.shift) error(in, "dcl takes no shift (_x2, _d2 ...)");
+  if ((d.writeMask & 0xF) == 0) error(in, "dcl of {} declares no component (empty write mask)", reg(d.type, d.index));
   // The texture type field (bits 30:27 of the usage token) belongs to sampler dcls.
   if (d.type != R::Sampler && in.textureType != TextureType::Unknown)
     error(in, "dcl of {} has a texture type; only samplers (s#) have one", reg(d.type, d.index));

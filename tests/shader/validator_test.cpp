@@ -1304,3 +1304,14 @@ TEST(ValidatorTokens, DclUsageBeyondSampleIsRejected) {
   ASSERT_FALSE(d.empty());
   EXPECT_EQ(d[0].message, "dcl of v0 has usage 14; D3DDECLUSAGE ends at 13 (sample)");
 }
+
+TEST(ValidatorTokens, DclWithAnEmptyMaskIsRejected) {
+  using namespace refx::shader;
+  // vs_2_0: dcl_position v0 with write mask 0 (0x90000000); m4x4 oPos, v0, c0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x80000000, 0x90000000,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "dcl of v0 declares no component (empty write mask)");
+}
