@@ -855,6 +855,10 @@ void Validator::checkDef(const Instruction& in) {
     error(in, "{} defines {} registers", op(in), fileName(want, v_));
     return;
   }
+  if (in.dst.shift || in.dst.resultMod) {
+    error(in, "{} takes no instruction modifier", op(in));
+    return;
+  }
   const RegisterRule* r = findRegisterRule(R_, want);
   if (!r) {
     error(in, "{} is not a {} register", reg(want, in.dst.index), name_);

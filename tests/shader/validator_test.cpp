@@ -1315,3 +1315,16 @@ TEST(ValidatorTokens, DclWithAnEmptyMaskIsRejected) {
   ASSERT_FALSE(d.empty());
   EXPECT_EQ(d[0].message, "dcl of v0 declares no component (empty write mask)");
 }
+
+TEST(ValidatorTokens, DefTakesNoModifier) {
+  using namespace refx::shader;
+  // vs_2_0: defi i0, 4, 0, 1, 0 whose destination has shift 4 and _pp (0xF42F0000:
+  // bits 27:24 = 4, 23:20 = 2); m4x4 oPos, v0, c0 after dcl_position v0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x80000000, 0x900F0000,
+                                        0x05000030, 0xF42F0000, 4, 0, 1, 0,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "defi takes no instruction modifier");
+}
