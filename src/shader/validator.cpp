@@ -868,6 +868,10 @@ void Validator::checkDef(const Instruction& in) {
   if (int(in.dst.index) >= count)
     error(in, "{} is out of range: {} has {} {} registers ({}..{})", reg(want, in.dst.index), name_,
           count, r->meaning, reg(want, 0), reg(want, count - 1));
+  // A BOOL constant is TRUE (1) or FALSE (0), the values the assembler writes.
+  if (in.opcode == O::DefB && in.literal[0] > 1)
+    error(in, "defb {}: value 0x{:x} is neither FALSE (0) nor TRUE (1)", reg(want, in.dst.index),
+          in.literal[0]);
   if (in.opcode == O::Def) {
     for (int i = 0; i < 4; ++i) {
       float f;

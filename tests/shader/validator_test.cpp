@@ -1328,3 +1328,14 @@ TEST(ValidatorTokens, DefTakesNoModifier) {
   ASSERT_FALSE(d.empty());
   EXPECT_EQ(d[0].message, "defi takes no instruction modifier");
 }
+
+TEST(ValidatorTokens, DefbIsFalseOrTrue) {
+  using namespace refx::shader;
+  // vs_2_0: defb b1 with the value 0x00100001 (TRUE is 1); then defb b2, true is fine.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200002F, 0xE0010801, 0x00100001,
+                                        0x0200002F, 0xE0010802, 0x00000001, 0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "defb b1: value 0x100001 is neither FALSE (0) nor TRUE (1)");
+  for (size_t i = 1; i < d.size(); ++i) EXPECT_EQ(d[i].message.find("defb b2"), std::string::npos);
+}
