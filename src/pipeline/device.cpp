@@ -556,6 +556,12 @@ double bufferDepth(const RasterDraw& d, const SetupVertex& v) {
 void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, const Rect& bounds,
                    bool flat, bool biased = true) {
   constexpr double one = double(1 << kSubPixelBits);
+  // Positions that are not numbers or lie far beyond any guard band (pretransformed
+  // vertices are not clipped) would overflow the fixed-point edge functions: such a
+  // triangle is not drawn.
+  constexpr float kMaxScreenCoordinate = float(1 << 18);
+  for (const SetupVertex& v : sv)
+    if (!(std::fabs(v.x) <= kMaxScreenCoordinate && std::fabs(v.y) <= kMaxScreenCoordinate)) return;
   int64_t X[3], Y[3];
   for (int i = 0; i < 3; ++i) {
     X[i] = roundHalfAway(double(sv[i].x) * one);

@@ -48,7 +48,10 @@ VertexDeclaration vertexDeclarationFromVsd(const shader::VsDeclaration& decl) {
 
 void setVsdConstants(Device& device, const shader::VsDeclaration& decl) {
   for (const shader::VsdEntry& e : decl.entries) {
-    if (e.kind != shader::VsdEntry::Kind::Const || e.data.size() < size_t(e.count) * 4) continue;
+    // D3DVSD_CONST(address, 0) loads nothing (and has no data to copy).
+    if (e.kind != shader::VsdEntry::Kind::Const || e.count == 0 ||
+        e.data.size() < size_t(e.count) * 4)
+      continue;
     std::vector<float> values(size_t(e.count) * 4);
     std::memcpy(values.data(), e.data.data(), values.size() * sizeof(float));
     device.setVertexShaderConstantF(e.address, values.data(), e.count);

@@ -19,7 +19,8 @@ namespace {
 
 class Runner {
  public:
-  Runner(const SceneScript& script, Device& device) : script_(script), device_(device) {
+  Runner(const SceneScript& script, Device& device, const SceneCommandFilter& filter)
+      : script_(script), device_(device), filter_(filter) {
     base_ = std::filesystem::path(script.file).parent_path();
   }
 
@@ -32,6 +33,7 @@ class Runner {
     device_.setRenderTarget(out.target);
     device_.setDepthStencilSurface(out.depthStencil);
     for (const Command& c : script_.commands) {
+      if (filter_ && !filter_(c)) continue;
       current_ = &c;
       try {
         std::visit([this](const auto& a) { apply(a); }, c.action);
@@ -203,6 +205,7 @@ class Runner {
 
   const SceneScript& script_;
   Device& device_;
+  const SceneCommandFilter& filter_;
   std::filesystem::path base_;
   const Command* current_ = nullptr;
   std::map<std::string, TexturePtr> textures_;
@@ -211,8 +214,9 @@ class Runner {
 
 }  // namespace
 
-SceneOutput runSceneScript(const SceneScript& script, Device& device) {
-  return Runner(script, device).run();
+SceneOutput runSceneScript(const SceneScript& script, Device& device,
+                           const SceneCommandFilter& filter) {
+  return Runner(script, device, filter).run();
 }
 
 }  // namespace refx

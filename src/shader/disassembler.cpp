@@ -99,9 +99,13 @@ std::string srcText(const SrcParam& s, Version version) {
   return prefix + reg + suffix + swizzleText(s.swizzle);
 }
 
-std::string dstText(const DstParam& d, Version version) {
+// The assembler reads a missing mask on m3x3/m4x3/m3x2 as the components they compute
+// (.xyz/.xy), so a full mask is written out there to reassemble to the same token.
+std::string dstText(const DstParam& d, Opcode op, Version version) {
+  const bool maskImpliedByOpcode = op == Opcode::M3x3 || op == Opcode::M4x3 || op == Opcode::M3x2;
+  const bool full = (d.writeMask & 0xF) == 0xF;
   return registerText(d.type, d.index, d.relative, version.sm2plus() ? d.rel : RelativeAddress{}, version) +
-         maskText(d.writeMask);
+         (full && maskImpliedByOpcode ? std::string(".xyzw") : maskText(d.writeMask));
 }
 
 std::string resultModifierText(const DstParam& d) {
@@ -160,7 +164,7 @@ std::string instructionText(const Instruction& ins, Version version) {
   const OperandCounts counts = operandCounts(ins.opcode, version);
   if (counts.dst) line += resultModifierText(ins.dst);
   std::vector<std::string> ops;
-  if (counts.dst) ops.push_back(dstText(ins.dst, version));
+  if (counts.dst) ops.push_back(dstText(ins.dst, ins.opcode, version));
   switch (ins.opcode) {
     case Opcode::Def:
       for (uint32_t v : ins.literal) ops.push_back(floatText(v));

@@ -451,6 +451,24 @@ bool Validator::checkOpcode(const Instruction& in, const OpcodeRule*& rule) {
     error(in, "{} is not a {} instruction", op(in), name_);
     return false;
   }
+  // Specific-control bits 23:16 hold the comparison of ifc/breakc/setp and, from SM2
+  // on, texld's project (texldp) or bias (texldb) bit; they are reserved (0) elsewhere.
+  const bool compares = in.opcode == O::IfC || in.opcode == O::BreakC || in.opcode == O::SetP;
+  const bool controlOk = compares                         ? in.control >= 1 && in.control <= 6
+                         : in.opcode == O::Tex && v_.major >= 2 ? in.control <= 2
+                                                                : in.control == 0;
+  if (!controlOk) {
+    error(in, "{} has specific-control bits 0x{:02x}, which {} does not define for it", op(in),
+          in.control, name_);
+    return false;
+  }
+  // Result modifier bits 23:20 of a destination: _sat, _pp and _centroid; bit 23 is
+  // undefined.
+  if (in.hasDst && (in.dst.resultMod & ~(ResultSaturate | ResultPartialPrecision | ResultCentroid))) {
+    error(in, "{} has result modifier bits 0x{:x}; only _sat, _pp and _centroid exist", op(in),
+          in.dst.resultMod);
+    return false;
+  }
   if (rule->flags & OpNeedsCap) {
     bool ok = v_.isPixel() ? caps_.ps2xFlowControl : caps_.vs2xFlowControl;
     if (!ok) {
@@ -837,6 +855,10 @@ void Validator::checkDef(const Instruction& in) {
     error(in, "{} defines {} registers", op(in), fileName(want, v_));
     return;
   }
+  if (in.dst.shift || in.dst.resultMod) {
+    error(in, "{} takes no instruction modifier", op(in));
+    return;
+  }
   const RegisterRule* r = findRegisterRule(R_, want);
   if (!r) {
     error(in, "{} is not a {} register", reg(want, in.dst.index), name_);
@@ -846,6 +868,10 @@ void Validator::checkDef(const Instruction& in) {
   if (int(in.dst.index) >= count)
     error(in, "{} is out of range: {} has {} {} registers ({}..{})", reg(want, in.dst.index), name_,
           count, r->meaning, reg(want, 0), reg(want, count - 1));
+  // A BOOL constant is TRUE (1) or FALSE (0), the values the assembler writes.
+  if (in.opcode == O::DefB && in.literal[0] > 1)
+    error(in, "defb {}: value 0x{:x} is neither FALSE (0) nor TRUE (1)", reg(want, in.dst.index),
+          in.literal[0]);
   if (in.opcode == O::Def) {
     for (int i = 0; i < 4; ++i) {
       float f;
@@ -887,6 +913,12 @@ void Validator::checkDcl(const Instruction& in) {
     error(in, "dcl cannot declare {} in {}", reg(d.type, d.index), name_);
     return;
   }
+  // A declaration computes nothing: its destination token carries no shift.
+  if (d.shift) error(in, "dcl takes no shift (_x2, _d2 ...)");
+  if ((d.writeMask & 0xF) == 0) error(in, "dcl of {} declares no component (empty write mask)", reg(d.type, d.index));
+  // The texture type field (bits 30:27 of the usage token) belongs to sampler dcls.
+  if (d.type != R::Sampler && in.textureType != TextureType::Unknown)
+    error(in, "dcl of {} has a texture type; only samplers (s#) have one", reg(d.type, d.index));
   const RegisterRule* r = findRegisterRule(R_, d.type);
   if (!r) return;
   if (int(d.index) >= registerCount(*r)) {
@@ -905,6 +937,9 @@ void Validator::checkDcl(const Instruction& in) {
     declared_[key(d.type, d.index)] = 0xF;
     return;
   }
+  if (uint8_t(in.usage) > uint8_t(DeclUsage::Sample))
+    error(in, "dcl of {} has usage {}; D3DDECLUSAGE ends at 13 (sample)", reg(d.type, d.index),
+          int(in.usage));
   uint8_t& m = declared_[key(d.type, d.index)];
   if (m & d.writeMask) {
     // vs_3_0 outputs may share one o# with disjoint masks; anything else once.

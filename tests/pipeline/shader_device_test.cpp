@@ -4,11 +4,11 @@
 // worked out by hand from D3D9's semantics.
 #include <gtest/gtest.h>
 
-#include "error_helpers.h"
-
+#include <cmath>
 #include <string>
 
 #include "device_helpers.h"
+#include "error_helpers.h"
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
 #include "refx/pipeline/dx8_declaration.h"
@@ -251,6 +251,44 @@ TEST(ShaderDevice, Dx8VsdDeclarationMapsRegistersAndLoadsConstants) {
   dev->drawPrimitiveUP(d3d::PT_TRIANGLESTRIP, 2, v.data(), sizeof(V));
   // (0.8*0.5, 0.4*1, 0.50196*0.25, 1) = (0.4, 0.4, 0.12549, 1) -> 102 102 32 255
   expectPixel(*dev, 4, 4, 102, 102, 32, 255);
+}
+
+TEST(ShaderDevice, Dx8VsdConstWithNoRegistersLoadsNothing) {
+  // D3DVSD_CONST(4, 0) carries no data: c4 keeps the value set before, and c5 gets the
+  // one register of the D3DVSD_CONST(5, 1) after it.
+  auto dev = makeDevice(8, 8);
+  const float before[4] = {0.5f, 0.5f, 0.5f, 0.5f};
+  dev->setVertexShaderConstantF(4, before, 1);
+  const shader::VsDeclaration vsd = shader::parseVsDeclaration(
+      "DWORD dwDecl[] = { D3DVSD_STREAM(0), D3DVSD_REG(0, D3DVSDT_FLOAT3), D3DVSD_CONST(4, 0),"
+      " D3DVSD_CONST(5, 1), 1.0f, 2.0f, 3.0f, 4.0f, D3DVSD_END() };",
+      "decl.h");
+  setVsdConstants(*dev, vsd);
+  EXPECT_EQ(dev->state().vsConstF[4], (Vec4{0.5f, 0.5f, 0.5f, 0.5f}));
+  EXPECT_EQ(dev->state().vsConstF[5], (Vec4{1, 2, 3, 4}));
+}
+
+TEST(ShaderDevice, TrianglesWithUnrepresentablePositionsAreNotDrawn) {
+  // Pretransformed vertices are not clipped: a triangle with a NaN or a 1e30 screen
+  // coordinate cannot be set up in fixed point and draws nothing; the pixel keeps the
+  // clear color, and a normal triangle after them still draws.
+  auto dev = makeDevice(8, 8);
+  dev->clear(d3d::CLEAR_TARGET, 0xff000000, 1, 0);
+  dev->setFVF(d3d::FVF_XYZRHW | d3d::FVF_DIFFUSE);
+  struct V {
+    float x, y, z, rhw;
+    uint32_t color;
+  };
+  const uint32_t red = 0xffff0000;
+  const V nan[3] = {{0, 0, 0.5f, 1, red}, {std::nanf(""), 0, 0.5f, 1, red}, {0, 16, 0.5f, 1, red}};
+  const V huge[3] = {{0, 0, 0.5f, 1, red}, {1e30f, 0, 0.5f, 1, red}, {0, 1e30f, 0.5f, 1, red}};
+  dev->drawPrimitiveUP(d3d::PT_TRIANGLELIST, 1, nan, sizeof(V));
+  dev->drawPrimitiveUP(d3d::PT_TRIANGLELIST, 1, huge, sizeof(V));
+  expectPixel(*dev, 1, 1, 0, 0, 0, 255);
+  const V green[3] = {{0, 0, 0.5f, 1, 0xff00ff00}, {16, 0, 0.5f, 1, 0xff00ff00},
+                      {0, 16, 0.5f, 1, 0xff00ff00}};
+  dev->drawPrimitiveUP(d3d::PT_TRIANGLELIST, 1, green, sizeof(V));
+  expectPixel(*dev, 1, 1, 0, 255, 0, 255);
 }
 
 TEST(ShaderDevice, ShaderDepthOutputReplacesInterpolatedDepth) {

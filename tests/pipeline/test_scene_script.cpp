@@ -756,3 +756,23 @@ TEST(SceneRun, FileTexturePathIsRelativeToTheScene) {
   EXPECT_EQ(colorToD3D(device.state().textures[0]->texel(0, 0, 1, 0)), 0xff445566u);
   std::filesystem::remove_all(dir);
 }
+
+TEST(SceneRun, FilterSkipsCommands) {
+  // The filter turns the second clear away: the target keeps the first clear's color,
+  // and a command that does not run (the missing shader file) is not an error.
+  SceneScript s = parseSceneScript(
+      "size 2 2\nclear 0xff102030\nclear 0xff405060\nps file no/such/file.psh\n", "r.scene");
+  Device device(testCaps());
+  std::vector<std::string> seen;
+  runSceneScript(s, device, [&](const scene::Command& c) {
+    seen.push_back(c.name);
+    return c.line == 2;
+  });
+  EXPECT_EQ(seen, (std::vector<std::string>{"clear", "clear", "ps"}));
+  int rgba[4];
+  readTargetPixel(*device.renderTarget(), 1, 1, rgba);  // resolves the deferred clear
+  EXPECT_EQ(rgba[0], 0x10);
+  EXPECT_EQ(rgba[1], 0x20);
+  EXPECT_EQ(rgba[2], 0x30);
+  EXPECT_EQ(rgba[3], 0xff);
+}

@@ -29,6 +29,16 @@ TEST(Disassembler, Vs11) {
             "mov r0.xy, -c[a0.x+3].yz\n");  // .yzzz: the repeated last letter is implied
 }
 
+TEST(Disassembler, FullMaskOfMatrixMacrosIsWrittenOut) {
+  // m3x3 r0, v3, c0 with mask .xyzw (0x800F0000) and m3x2 r1.xy: without a mask the
+  // assembler writes .xyz / .xy for these macros, so only the full mask is spelled out.
+  EXPECT_EQ(dis({0xFFFE0101, 0x00000017, 0x800F0000, 0x90E40003, 0xA0E40000, 0x00000018,
+                 0x80030001, 0x90E40003, 0xA0E40000, 0x0000FFFF}),
+            "vs_1_1\n"
+            "m3x3 r0.xyzw, v3, c0\n"
+            "m3x2 r1.xy, v3, c0\n");
+}
+
 TEST(Disassembler, Ps11) {
   // def c0, 1, 0.5, 0, -1; tex t0; mul_x2 r0.rgb, t0, v0; +mov r0.a, t0 (co-issue).
   EXPECT_EQ(dis({0xFFFF0101, 0x00000051, 0xA00F0000, 0x3F800000, 0x3F000000, 0x00000000, 0xBF800000,

@@ -1261,3 +1261,106 @@ TEST(ValidatorSeeds, ShadersTheTextsRejectAreRejected) {
 
 }  // namespace
 }  // namespace refx::shader
+
+TEST(ValidatorTokens, ReservedSpecificControlBitsAreRejected) {
+  using namespace refx::shader;
+  // ps_1_1: tex t0; mul r0, t0, v0 with bits 23:16 = 0x39, which mul does not define
+  // (bytecode.md: instruction token bits 23:16 are opcode-specific controls).
+  const std::vector<uint32_t> mul = {0xFFFF0101, 0x00000042, 0xB00F0000, 0x00390005,
+                                     0x800F0000, 0xB0E40000, 0x90E40000, 0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(mul));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "mul has specific-control bits 0x39, which ps_1_1 does not define for it");
+  // ps_2_0: dcl_2d s0; dcl t0; texld r0, t0, s0 with project and bias bits both set (3).
+  const std::vector<uint32_t> texld = {0xFFFF0200, 0x0200001F, 0x90000000, 0xA00F0800,
+                                       0x0200001F, 0x80000000, 0xB00F0000, 0x03030042,
+                                       0x800F0000, 0xB0E40000, 0xA0E40800, 0x02000001,
+                                       0x800F0800, 0x80E40000, 0x0000FFFF};
+  EXPECT_FALSE(validate(decode(texld)).empty());
+  // The same with the project bit alone is texldp, which ps_2_0 has.
+  std::vector<uint32_t> texldp = texld;
+  texldp[7] = 0x03010042;
+  EXPECT_TRUE(validate(decode(texldp)).empty());
+}
+
+TEST(ValidatorTokens, DclTakesNoShift) {
+  using namespace refx::shader;
+  // vs_2_0: dcl_position v0 whose destination token has shift bits 27:24 = 0x9 (-7, a
+  // "_d128" no assembler can write); m4x4 oPos, v0, c0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x80000000, 0x990F0000,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "dcl takes no shift (_x2, _d2 ...)");
+}
+
+TEST(ValidatorTokens, TextureTypeBelongsToSamplerDcls) {
+  using namespace refx::shader;
+  // vs_2_0: dcl_position v0 with bits 30:27 of its usage token = 8 (0xC0000000: the
+  // texture type field, which only a sampler dcl uses); m4x4 oPos, v0, c0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0xC0000000, 0x900F0000,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "dcl of v0 has a texture type; only samplers (s#) have one");
+}
+
+TEST(ValidatorTokens, UndefinedResultModifierBitsAreRejected) {
+  using namespace refx::shader;
+  // vs_1_1: mov oPos, v0 whose destination has result modifier bits 23:20 = 8 (defined:
+  // 1 _sat, 2 _pp, 4 _centroid).
+  const std::vector<uint32_t> tokens = {0xFFFE0101, 0x00000001, 0xC08F0000, 0x90E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "mov has result modifier bits 0x8; only _sat, _pp and _centroid exist");
+}
+
+TEST(ValidatorTokens, DclUsageBeyondSampleIsRejected) {
+  using namespace refx::shader;
+  // vs_2_0: dcl v0 with usage 14 in its usage token (0x8000000E; D3DDECLUSAGE_SAMPLE = 13
+  // is the last); m4x4 oPos, v0, c0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x8000000E, 0x900F0000,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "dcl of v0 has usage 14; D3DDECLUSAGE ends at 13 (sample)");
+}
+
+TEST(ValidatorTokens, DclWithAnEmptyMaskIsRejected) {
+  using namespace refx::shader;
+  // vs_2_0: dcl_position v0 with write mask 0 (0x90000000); m4x4 oPos, v0, c0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x80000000, 0x90000000,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "dcl of v0 declares no component (empty write mask)");
+}
+
+TEST(ValidatorTokens, DefTakesNoModifier) {
+  using namespace refx::shader;
+  // vs_2_0: defi i0, 4, 0, 1, 0 whose destination has shift 4 and _pp (0xF42F0000:
+  // bits 27:24 = 4, 23:20 = 2); m4x4 oPos, v0, c0 after dcl_position v0.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x80000000, 0x900F0000,
+                                        0x05000030, 0xF42F0000, 4, 0, 1, 0,
+                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
+                                        0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "defi takes no instruction modifier");
+}
+
+TEST(ValidatorTokens, DefbIsFalseOrTrue) {
+  using namespace refx::shader;
+  // vs_2_0: defb b1 with the value 0x00100001 (TRUE is 1); then defb b2, true is fine.
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200002F, 0xE0010801, 0x00100001,
+                                        0x0200002F, 0xE0010802, 0x00000001, 0x0000FFFF};
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "defb b1: value 0x100001 is neither FALSE (0) nor TRUE (1)");
+  for (size_t i = 1; i < d.size(); ++i) EXPECT_EQ(d[i].message.find("defb b2"), std::string::npos);
+}

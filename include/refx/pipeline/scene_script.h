@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -169,9 +170,13 @@ struct SceneOutput {
   // `rendertarget N W H FORMAT` command created (bound or not at the end), or null.
   std::array<TexturePtr, 4> targets;
 };
+// Decides before each command whether it runs (true) or is skipped (false).
+using SceneCommandFilter = std::function<bool(const scene::Command&)>;
 // Creates the render target (all texels 0) and D24S8 surface, attaches them to `device`
-// and runs every command in order.
-SceneOutput runSceneScript(const SceneScript& script, Device& device);
+// and runs every command in order, or those `filter` lets through (limits on the work a
+// script may do, e.g. when fuzzing).
+SceneOutput runSceneScript(const SceneScript& script, Device& device,
+                           const SceneCommandFilter& filter = {});
 
 // Reads pixel (x, y) of a render target as 0-255 r, g, b, a.
 void readTargetPixel(const Texture& target, int x, int y, int rgba[4]);
