@@ -169,7 +169,8 @@ class Runner {
   }
 
   void apply(const Draw& d) {
-    device_.setFVF(d.fvf);
+    if (d.declaration) device_.setVertexDeclaration(*d.declaration);
+    else device_.setFVF(d.fvf);
     if (d.indices.empty()) {
       device_.drawPrimitiveUP(d.type, d.primitiveCount, d.vertices.data(), d.stride);
       return;

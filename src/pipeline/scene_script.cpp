@@ -117,6 +117,16 @@ std::string enumNames(d3d::EnumKind kind) {
 }
 
 // fvf element order in a vertex: position, normal, psize, diffuse, specular, texcoords.
+// `decl USAGE[N]:TYPE ...`: a vertex declaration on stream 0, elements packed in the
+// order given; `v` lines give each element's values in that order.
+struct DeclLayout {
+  VertexDeclaration declaration;
+  std::vector<uint8_t> types;  // d3d::DECLTYPE_* of each element
+  std::string text;
+  uint32_t stride = 0;
+  size_t valueCount = 0;
+};
+
 struct FvfLayout {
   int positionFloats = 4;  // xyz 3, xyzrhw 4, xyzw 4, xyzbN 3 + N (betas included)
   uint32_t positionCode = d3d::FVF_XYZRHW;
@@ -313,7 +323,7 @@ class Parser {
         {"material", &Parser::material}, {"light", &Parser::light},
         {"viewport", &Parser::viewport}, {"scissor", &Parser::scissor},
         {"rendertarget", &Parser::renderTarget},
-        {"clipplane", &Parser::clipPlane},
+        {"clipplane", &Parser::clipPlane}, {"decl", &Parser::decl},
     };
     for (const CommandEntry& c : kCommands) {
       if (c.name == name) {
@@ -324,7 +334,7 @@ class Parser {
     throw Error(SourceLocation{script_.file, line_, tok_[0].col},
                 fmt::format("unknown command '{}' (expected size, clear, rs, tss, samp, "
                             "texture, settex, vs, ps, vsconst, psconst, fvf, v, i, draw, "
-                            "transform, material, light, viewport, scissor, rendertarget or clipplane)",
+                            "transform, material, light, viewport, scissor, rendertarget, clipplane or decl)",
                             tok_[0].text));
   }
 
@@ -724,10 +734,114 @@ class Parser {
     }
     f.text = text;
     fvf_ = f;
+    decl_.reset();
+  }
+
+  // ---- decl USAGE[N]:TYPE ...  (stream 0, packed in order)
+  void decl() {
+    need(1, 32, "USAGE[N]:TYPE ... (e.g. position0:float3 position1:float3 normal0:float3 "
+                "color0:d3dcolor)");
+    if (!vertices_.empty() || !indices_.empty())
+      err(tok_[0].col, "vertices are pending; draw them before changing the declaration");
+    struct Named {
+      std::string_view name;
+      uint8_t value;
+    };
+    static constexpr Named kUsages[] = {
+        {"position", d3d::DECLUSAGE_POSITION}, {"blendweight", d3d::DECLUSAGE_BLENDWEIGHT},
+        {"blendindices", d3d::DECLUSAGE_BLENDINDICES}, {"normal", d3d::DECLUSAGE_NORMAL},
+        {"psize", d3d::DECLUSAGE_PSIZE}, {"texcoord", d3d::DECLUSAGE_TEXCOORD},
+        {"tangent", d3d::DECLUSAGE_TANGENT}, {"binormal", d3d::DECLUSAGE_BINORMAL},
+        {"positiont", d3d::DECLUSAGE_POSITIONT}, {"color", d3d::DECLUSAGE_COLOR},
+        {"fog", d3d::DECLUSAGE_FOG}};
+    // Types a `v` line can spell: floats, a D3DCOLOR, or four bytes 0-255.
+    struct TypeInfo {
+      std::string_view name;
+      uint8_t type;
+      uint32_t size, values;
+    };
+    static constexpr TypeInfo kTypes[] = {
+        {"float1", d3d::DECLTYPE_FLOAT1, 4, 1}, {"float2", d3d::DECLTYPE_FLOAT2, 8, 2},
+        {"float3", d3d::DECLTYPE_FLOAT3, 12, 3}, {"float4", d3d::DECLTYPE_FLOAT4, 16, 4},
+        {"d3dcolor", d3d::DECLTYPE_D3DCOLOR, 4, 1}, {"ubyte4", d3d::DECLTYPE_UBYTE4, 4, 4}};
+    DeclLayout d;
+    for (size_t i = 1; i <= argc(); ++i) {
+      const std::string e = lower(arg(i));
+      const size_t colon = e.find(':');
+      const std::string usageText = e.substr(0, colon);
+      const std::string typeText = colon == std::string::npos ? "" : e.substr(colon + 1);
+      size_t digits = usageText.size();
+      while (digits > 0 && std::isdigit(static_cast<unsigned char>(usageText[digits - 1]))) --digits;
+      const Named* usage = nullptr;
+      for (const Named& u : kUsages)
+        if (u.name == usageText.substr(0, digits)) usage = &u;
+      const TypeInfo* type = nullptr;
+      for (const TypeInfo& t : kTypes)
+        if (t.name == typeText) type = &t;
+      const std::string indexText = usageText.substr(digits);
+      if (!usage || !type || indexText.size() > 2)
+        errAt(i, fmt::format("expected USAGE[N]:TYPE with a usage of position, blendweight, "
+                             "blendindices, normal, psize, texcoord, tangent, binormal, "
+                             "positiont, color or fog, N 0-15 and a type of float1-4, d3dcolor "
+                             "or ubyte4, got '{}'",
+                             arg(i)));
+      const int index = indexText.empty() ? 0 : std::stoi(indexText);
+      if (index > 15) errAt(i, fmt::format("usage index {} is out of range (0-15)", index));
+      if (d.declaration.find(usage->value, uint8_t(index)))
+        errAt(i, fmt::format("'{}' is given twice", arg(i)));
+      VertexElement el;
+      el.stream = 0;
+      el.offset = uint16_t(d.stride);
+      el.type = type->type;
+      el.usage = usage->value;
+      el.usageIndex = uint8_t(index);
+      d.declaration.elements.push_back(el);
+      d.types.push_back(type->type);
+      d.stride += type->size;
+      d.valueCount += type->values;
+    }
+    if (!d.declaration.find(d3d::DECLUSAGE_POSITION, 0) && !d.declaration.find(d3d::DECLUSAGE_POSITIONT, 0))
+      err(tok_[1].col, "expected a position0 or positiont0 element");
+    for (size_t i = 1; i <= argc(); ++i) {
+      if (i > 1) d.text.push_back(' ');
+      d.text.append(arg(i));
+    }
+    decl_ = std::move(d);
+  }
+
+  // ---- v VALUES... with a `decl` layout
+  void declVertex() {
+    const DeclLayout& d = *decl_;
+    if (argc() != d.valueCount)
+      err(argc() > d.valueCount ? tok_[d.valueCount + 1].col : 0,
+          fmt::format("expected {} values for decl `{}`, got {}", d.valueCount, d.text, argc()));
+    size_t at = 1;
+    for (uint8_t type : d.types) {
+      if (type == d3d::DECLTYPE_D3DCOLOR) {
+        const uint32_t c = d3dColor(at++, "a color");
+        const uint8_t* b = reinterpret_cast<const uint8_t*>(&c);
+        vertices_.insert(vertices_.end(), b, b + 4);
+      } else if (type == d3d::DECLTYPE_UBYTE4) {
+        for (int k = 0; k < 4; ++k) vertices_.push_back(uint8_t(integer(at++, "a byte", 0, 255)));
+      } else {
+        for (int k = 0; k <= type - d3d::DECLTYPE_FLOAT1; ++k) {
+          const float f = number(at++, "a float");
+          const uint8_t* b = reinterpret_cast<const uint8_t*>(&f);
+          vertices_.insert(vertices_.end(), b, b + 4);
+        }
+      }
+    }
   }
 
   // ---- v VALUES...
   void vertex() {
+    if (decl_) {
+      declVertex();
+      if (vertexCount_ == 0 && indices_.empty()) pendingLine_ = line_;
+      ++vertexCount_;
+      if (vertexCount_ > 65536 * 16) err(0, "too many vertices for one draw");
+      return;
+    }
     size_t n = fvf_.valueCount();
     if (argc() != n)
       err(argc() > n ? tok_[n + 1].col : 0,
@@ -807,6 +921,11 @@ class Parser {
     d.type = prim->type;
     d.fvf = fvf_.code();
     d.stride = fvf_.stride();
+    if (decl_) {
+      d.fvf = 0;
+      d.stride = decl_->stride;
+      d.declaration = decl_->declaration;
+    }
     d.vertexCount = vertexCount_;
     bool indexed = !indices_.empty();
     uint32_t n = indexed ? uint32_t(indices_.size()) : vertexCount_;
@@ -995,6 +1114,7 @@ class Parser {
   std::set<std::string> textures_;
   std::array<std::optional<std::pair<int, int>>, 4> targetSizes_;  // rendertarget N W H
   FvfLayout fvf_;
+  std::optional<DeclLayout> decl_;  // `decl` replaces the FVF until the next `fvf`
   std::vector<uint8_t> vertices_;
   uint32_t vertexCount_ = 0;
   std::vector<uint16_t> indices_;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -86,6 +87,8 @@ struct SetConstants {
 struct Draw {
   d3d::PrimitiveType type = d3d::PT_TRIANGLELIST;
   uint32_t fvf = 0;
+  // Set by `decl`: the vertices use this declaration (stream 0) instead of the FVF.
+  std::optional<VertexDeclaration> declaration;
   uint32_t stride = 0;
   uint32_t vertexCount = 0;
   uint32_t primitiveCount = 0;
