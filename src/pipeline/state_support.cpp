@@ -74,8 +74,9 @@ constexpr StateSupportEntry kTable[] = {
     {kRS, RS_WRAP0 + 5, kImpl, "cylindrical wrap of texture coordinate sets (device.cpp)"},
     {kRS, RS_WRAP0 + 6, kImpl, "cylindrical wrap of texture coordinate sets (device.cpp)"},
     {kRS, RS_WRAP0 + 7, kImpl, "cylindrical wrap of texture coordinate sets (device.cpp)"},
-    {kRS, RS_CLIPPING, kNoEffect,
-     "refx always clips; FALSE only promises that no primitive needs clipping"},
+    {kRS, RS_CLIPPING, kImpl,
+     "FALSE turns the user clip planes off (clip.cpp); the view volume is always clipped, "
+     "which FALSE only promises is not needed"},
     {kRS, RS_LIGHTING, kImpl, kFFVertex},
     {kRS, RS_AMBIENT, kImpl, kFFVertex},
     {kRS, RS_FOGVERTEXMODE, kImpl, kFog},
