@@ -1262,6 +1262,22 @@ TEST(ValidatorSeeds, ShadersTheTextsRejectAreRejected) {
 }  // namespace
 }  // namespace refx::shader
 
+namespace {
+
+// The validator's first message for `tokens`; "(valid)" when it has none.
+std::string firstProblem(const std::vector<uint32_t>& tokens) {
+  const std::vector<refx::Diagnostic> d = refx::shader::validate(refx::shader::decode(tokens));
+  return d.empty() ? "(valid)" : d[0].message;
+}
+
+// vs_2_0: one dcl of v0 with the given usage and register tokens; m4x4 oPos, v0, c0.
+std::vector<uint32_t> vs20WithDcl(uint32_t usageToken, uint32_t registerToken) {
+  return {0xFFFE0200, 0x0200001F, usageToken, registerToken, 0x03000014,
+          0xC00F0000, 0x90E40000, 0xA0E40000, 0x0000FFFF};
+}
+
+}  // namespace
+
 TEST(ValidatorTokens, ReservedSpecificControlBitsAreRejected) {
   using namespace refx::shader;
   // ps_1_1: tex t0; mul r0, t0, v0 with bits 23:16 = 0x39, which mul does not define
@@ -1287,24 +1303,16 @@ TEST(ValidatorTokens, DclTakesNoShift) {
   using namespace refx::shader;
   // vs_2_0: dcl_position v0 whose destination token has shift bits 27:24 = 0x9 (-7, a
   // "_d128" no assembler can write); m4x4 oPos, v0, c0.
-  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x80000000, 0x990F0000,
-                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
-                                        0x0000FFFF};
-  const std::vector<Diagnostic> d = validate(decode(tokens));
-  ASSERT_FALSE(d.empty());
-  EXPECT_EQ(d[0].message, "dcl takes no shift (_x2, _d2 ...)");
+  EXPECT_EQ(firstProblem(vs20WithDcl(0x80000000, 0x990F0000)),
+            "dcl takes no shift (_x2, _d2 ...)");
 }
 
 TEST(ValidatorTokens, TextureTypeBelongsToSamplerDcls) {
   using namespace refx::shader;
   // vs_2_0: dcl_position v0 with bits 30:27 of its usage token = 8 (0xC0000000: the
   // texture type field, which only a sampler dcl uses); m4x4 oPos, v0, c0.
-  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0xC0000000, 0x900F0000,
-                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
-                                        0x0000FFFF};
-  const std::vector<Diagnostic> d = validate(decode(tokens));
-  ASSERT_FALSE(d.empty());
-  EXPECT_EQ(d[0].message, "dcl of v0 has a texture type; only samplers (s#) have one");
+  EXPECT_EQ(firstProblem(vs20WithDcl(0xC0000000, 0x900F0000)),
+            "dcl of v0 has a texture type; only samplers (s#) have one");
 }
 
 TEST(ValidatorTokens, UndefinedResultModifierBitsAreRejected) {
@@ -1313,32 +1321,22 @@ TEST(ValidatorTokens, UndefinedResultModifierBitsAreRejected) {
   // 1 _sat, 2 _pp, 4 _centroid).
   const std::vector<uint32_t> tokens = {0xFFFE0101, 0x00000001, 0xC08F0000, 0x90E40000,
                                         0x0000FFFF};
-  const std::vector<Diagnostic> d = validate(decode(tokens));
-  ASSERT_FALSE(d.empty());
-  EXPECT_EQ(d[0].message, "mov has result modifier bits 0x8; only _sat, _pp and _centroid exist");
+  EXPECT_EQ(firstProblem(tokens), "mov has result modifier bits 0x8; only _sat, _pp and _centroid exist");
 }
 
 TEST(ValidatorTokens, DclUsageBeyondSampleIsRejected) {
   using namespace refx::shader;
   // vs_2_0: dcl v0 with usage 14 in its usage token (0x8000000E; D3DDECLUSAGE_SAMPLE = 13
   // is the last); m4x4 oPos, v0, c0.
-  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x8000000E, 0x900F0000,
-                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
-                                        0x0000FFFF};
-  const std::vector<Diagnostic> d = validate(decode(tokens));
-  ASSERT_FALSE(d.empty());
-  EXPECT_EQ(d[0].message, "dcl of v0 has usage 14; D3DDECLUSAGE ends at 13 (sample)");
+  EXPECT_EQ(firstProblem(vs20WithDcl(0x8000000E, 0x900F0000)),
+            "dcl of v0 has usage 14; D3DDECLUSAGE ends at 13 (sample)");
 }
 
 TEST(ValidatorTokens, DclWithAnEmptyMaskIsRejected) {
   using namespace refx::shader;
   // vs_2_0: dcl_position v0 with write mask 0 (0x90000000); m4x4 oPos, v0, c0.
-  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200001F, 0x80000000, 0x90000000,
-                                        0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
-                                        0x0000FFFF};
-  const std::vector<Diagnostic> d = validate(decode(tokens));
-  ASSERT_FALSE(d.empty());
-  EXPECT_EQ(d[0].message, "dcl of v0 declares no component (empty write mask)");
+  EXPECT_EQ(firstProblem(vs20WithDcl(0x80000000, 0x90000000)),
+            "dcl of v0 declares no component (empty write mask)");
 }
 
 TEST(ValidatorTokens, DefTakesNoModifier) {
@@ -1349,9 +1347,7 @@ TEST(ValidatorTokens, DefTakesNoModifier) {
                                         0x05000030, 0xF42F0000, 4, 0, 1, 0,
                                         0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000,
                                         0x0000FFFF};
-  const std::vector<Diagnostic> d = validate(decode(tokens));
-  ASSERT_FALSE(d.empty());
-  EXPECT_EQ(d[0].message, "defi takes no instruction modifier");
+  EXPECT_EQ(firstProblem(tokens), "defi takes no instruction modifier");
 }
 
 TEST(ValidatorTokens, DefbIsFalseOrTrue) {
@@ -1359,8 +1355,6 @@ TEST(ValidatorTokens, DefbIsFalseOrTrue) {
   // vs_2_0: defb b1 with the value 0x00100001 (TRUE is 1); then defb b2, true is fine.
   const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200002F, 0xE0010801, 0x00100001,
                                         0x0200002F, 0xE0010802, 0x00000001, 0x0000FFFF};
-  const std::vector<Diagnostic> d = validate(decode(tokens));
-  ASSERT_FALSE(d.empty());
-  EXPECT_EQ(d[0].message, "defb b1: value 0x100001 is neither FALSE (0) nor TRUE (1)");
+  EXPECT_EQ(firstProblem(tokens), "defb b1: value 0x100001 is neither FALSE (0) nor TRUE (1)");
   for (size_t i = 1; i < d.size(); ++i) EXPECT_EQ(d[i].message.find("defb b2"), std::string::npos);
 }
