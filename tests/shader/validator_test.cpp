@@ -1266,7 +1266,7 @@ namespace {
 
 // The validator's first message for `tokens`; "(valid)" when it has none.
 std::string firstProblem(const std::vector<uint32_t>& tokens) {
-  const std::vector<refx::Diagnostic> d = refx::shader::validate(refx::shader::decode(tokens));
+  const auto d = refx::shader::validate(refx::shader::decode(tokens));
   return d.empty() ? "(valid)" : d[0].message;
 }
 
@@ -1355,6 +1355,8 @@ TEST(ValidatorTokens, DefbIsFalseOrTrue) {
   // vs_2_0: defb b1 with the value 0x00100001 (TRUE is 1); then defb b2, true is fine.
   const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200002F, 0xE0010801, 0x00100001,
                                         0x0200002F, 0xE0010802, 0x00000001, 0x0000FFFF};
-  EXPECT_EQ(firstProblem(tokens), "defb b1: value 0x100001 is neither FALSE (0) nor TRUE (1)");
+  const std::vector<Diagnostic> d = validate(decode(tokens));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].message, "defb b1: value 0x100001 is neither FALSE (0) nor TRUE (1)");
   for (size_t i = 1; i < d.size(); ++i) EXPECT_EQ(d[i].message.find("defb b2"), std::string::npos);
 }
