@@ -1064,8 +1064,8 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     const Vec4* a = vertexOut(i0);
     const Vec4* b = vertexOut(i1);
     SetupVertex sa, sb;
+    ClipVertex ca, cb;  // outlive the setup: SetupVertex points at their varyings
     if (!vcfg.pretransformed && (clip.outside(a[0]) || clip.outside(b[0]))) {
-      ClipVertex ca, cb;
       if (!clipSegment(a, b, clip, ca, cb)) return;
       toScreen(ca.v, sa);
       toScreen(cb.v, sb);
