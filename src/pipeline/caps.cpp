@@ -1,6 +1,10 @@
 // Caps profiles: data/caps/<name>.caps files of `Field = value` lines, fields named
 // after D3DCAPS9, flag values written with the D3D flag names (prefix optional).
 #include "refx/pipeline/caps.h"
+
+#include <span>
+
+#include "caps_flags.h"
 #include "refx/core/text.h"
 
 #include <cctype>
@@ -58,42 +62,18 @@ const FlagSet& blendCapsSet() {
   return set;
 }
 
-const FlagSet kTextureCaps{"D3DPTEXTURECAPS_", {
-    {"PERSPECTIVE", 0x1}, {"POW2", 0x2}, {"ALPHA", 0x4}, {"SQUAREONLY", 0x20},
-    {"TEXREPEATNOTSCALEDBYSIZE", 0x40}, {"ALPHAPALETTE", 0x80},
-    {"NONPOW2CONDITIONAL", 0x100}, {"PROJECTED", 0x400}, {"CUBEMAP", 0x800},
-    {"VOLUMEMAP", 0x2000}, {"MIPMAP", 0x4000}, {"MIPVOLUMEMAP", 0x8000},
-    {"MIPCUBEMAP", 0x10000}, {"CUBEMAP_POW2", 0x20000}, {"VOLUMEMAP_POW2", 0x40000},
-    {"NOPROJECTEDBUMPENV", 0x200000}}};
+// A field whose names and bits are in caps_flags.h (shared with ValidateDevice).
+FlagSet flagSet(std::string_view prefix, std::span<const caps_flags::FlagBit> table) {
+  FlagSet s{prefix, {}};
+  for (const caps_flags::FlagBit& f : table) s.flags.push_back({std::string(f.name), f.bit});
+  return s;
+}
 
-const FlagSet kFilterCaps{"D3DPTFILTERCAPS_", {
-    {"MINFPOINT", 0x100}, {"MINFLINEAR", 0x200}, {"MINFANISOTROPIC", 0x400},
-    {"MINFPYRAMIDALQUAD", 0x800}, {"MINFGAUSSIANQUAD", 0x1000}, {"MIPFPOINT", 0x10000},
-    {"MIPFLINEAR", 0x20000}, {"CONVOLUTIONMONO", 0x40000}, {"MAGFPOINT", 0x1000000},
-    {"MAGFLINEAR", 0x2000000}, {"MAGFANISOTROPIC", 0x4000000},
-    {"MAGFPYRAMIDALQUAD", 0x8000000}, {"MAGFGAUSSIANQUAD", 0x10000000}}};
-
-const FlagSet kAddressCaps{"D3DPTADDRESSCAPS_", {
-    {"WRAP", 0x1}, {"MIRROR", 0x2}, {"CLAMP", 0x4}, {"BORDER", 0x8},
-    {"INDEPENDENTUV", 0x10}, {"MIRRORONCE", 0x20}}};
-
-const FlagSet kMiscCaps{"D3DPMISCCAPS_", {
-    {"MASKZ", 0x2}, {"LINEPATTERNREP", 0x4}, {"CULLNONE", 0x10}, {"CULLCW", 0x20},
-    {"CULLCCW", 0x40}, {"COLORWRITEENABLE", 0x80}, {"CLIPPLANESCALEDPOINTS", 0x100},
-    {"CLIPTLVERTS", 0x200}, {"TSSARGTEMP", 0x400}, {"BLENDOP", 0x800},
-    {"NULLREFERENCE", 0x1000}, {"INDEPENDENTWRITEMASKS", 0x4000},
-    {"PERSTAGECONSTANT", 0x8000}, {"FOGANDSPECULARALPHA", 0x10000},
-    {"SEPARATEALPHABLEND", 0x20000}, {"MRTINDEPENDENTBITDEPTHS", 0x40000},
-    {"MRTPOSTPIXELSHADERBLENDING", 0x80000}, {"FOGVERTEXCLAMPED", 0x100000},
-    {"POSTBLENDSRGBCONVERT", 0x200000}}};
-
-const FlagSet kRasterCaps{"D3DPRASTERCAPS_", {
-    {"DITHER", 0x1}, {"ZTEST", 0x10}, {"FOGVERTEX", 0x80}, {"FOGTABLE", 0x100},
-    {"MIPMAPLODBIAS", 0x2000}, {"ZBUFFERLESSHSR", 0x8000}, {"FOGRANGE", 0x10000},
-    {"ANISOTROPY", 0x20000}, {"WBUFFER", 0x40000}, {"WFOG", 0x100000}, {"ZFOG", 0x200000},
-    {"COLORPERSPECTIVE", 0x400000}, {"SCISSORTEST", 0x1000000},
-    {"SLOPESCALEDEPTHBIAS", 0x2000000}, {"DEPTHBIAS", 0x4000000},
-    {"MULTISAMPLE_TOGGLE", 0x8000000}}};
+const FlagSet kTextureCaps = flagSet("D3DPTEXTURECAPS_", caps_flags::kTextureCaps);
+const FlagSet kFilterCaps = flagSet("D3DPTFILTERCAPS_", caps_flags::kFilterCaps);
+const FlagSet kAddressCaps = flagSet("D3DPTADDRESSCAPS_", caps_flags::kAddressCaps);
+const FlagSet kMiscCaps = flagSet("D3DPMISCCAPS_", caps_flags::kMiscCaps);
+const FlagSet kRasterCaps = flagSet("D3DPRASTERCAPS_", caps_flags::kRasterCaps);
 
 const FlagSet kDevCaps{"D3DDEVCAPS_", {
     {"EXECUTESYSTEMMEMORY", 0x10}, {"EXECUTEVIDEOMEMORY", 0x20},

@@ -8,6 +8,8 @@
 // flag) that is missing.
 #include "validate.h"
 
+#include "caps_flags.h"
+
 #include <algorithm>
 #include <bit>
 #include <optional>
@@ -24,49 +26,47 @@ using namespace d3d;
 
 namespace {
 
-// A caps bit with its flag name, for the reasons.
-struct CapBit {
-  uint32_t bit;
-  std::string_view name;
-};
+// A caps bit with its flag name, for the reasons (the names and bits of caps_flags.h).
+using CapBit = caps_flags::FlagBit;
+using caps_flags::flag;
 
 // D3DPMISCCAPS_* and D3DPTEXTURECAPS_* bits the checks below read.
-constexpr uint32_t kMiscTssArgTemp = 0x400;
-constexpr uint32_t kMiscBlendOp = 0x800;
-constexpr uint32_t kMiscPerStageConstant = 0x8000;
-constexpr uint32_t kMiscSeparateAlphaBlend = 0x20000;
-constexpr uint32_t kTexCapsCubeMap = 0x800;
-constexpr uint32_t kTexCapsVolumeMap = 0x2000;
-constexpr uint32_t kTexCapsPow2 = 0x2;
-constexpr uint32_t kTexCapsNonPow2Conditional = 0x100;
-constexpr uint32_t kTexCapsProjected = 0x400;
-constexpr uint32_t kTexCapsCubeMapPow2 = 0x20000;
-constexpr uint32_t kTexCapsVolumeMapPow2 = 0x40000;
-constexpr CapBit kTexCapsMipMap{0x4000, "MIPMAP"};
-constexpr CapBit kTexCapsMipVolumeMap{0x8000, "MIPVOLUMEMAP"};
-constexpr CapBit kTexCapsMipCubeMap{0x10000, "MIPCUBEMAP"};
-constexpr uint32_t kMiscMaskZ = 0x2;
-constexpr uint32_t kMiscCullNone = 0x10;
-constexpr uint32_t kMiscCullCW = 0x20;
-constexpr uint32_t kMiscCullCCW = 0x40;
-constexpr uint32_t kMiscColorWriteEnable = 0x80;
-constexpr uint32_t kMiscIndependentWriteMasks = 0x4000;
-constexpr uint32_t kMiscMrtPostPixelShaderBlending = 0x80000;
-constexpr uint32_t kMiscMrtIndependentBitDepths = 0x40000;
-constexpr uint32_t kAddressIndependentUV = 0x10;
+constexpr uint32_t kMiscTssArgTemp = flag(caps_flags::kMiscCaps, "TSSARGTEMP").bit;
+constexpr uint32_t kMiscBlendOp = flag(caps_flags::kMiscCaps, "BLENDOP").bit;
+constexpr uint32_t kMiscPerStageConstant = flag(caps_flags::kMiscCaps, "PERSTAGECONSTANT").bit;
+constexpr uint32_t kMiscSeparateAlphaBlend = flag(caps_flags::kMiscCaps, "SEPARATEALPHABLEND").bit;
+constexpr uint32_t kTexCapsCubeMap = flag(caps_flags::kTextureCaps, "CUBEMAP").bit;
+constexpr uint32_t kTexCapsVolumeMap = flag(caps_flags::kTextureCaps, "VOLUMEMAP").bit;
+constexpr uint32_t kTexCapsPow2 = flag(caps_flags::kTextureCaps, "POW2").bit;
+constexpr uint32_t kTexCapsNonPow2Conditional = flag(caps_flags::kTextureCaps, "NONPOW2CONDITIONAL").bit;
+constexpr uint32_t kTexCapsProjected = flag(caps_flags::kTextureCaps, "PROJECTED").bit;
+constexpr uint32_t kTexCapsCubeMapPow2 = flag(caps_flags::kTextureCaps, "CUBEMAP_POW2").bit;
+constexpr uint32_t kTexCapsVolumeMapPow2 = flag(caps_flags::kTextureCaps, "VOLUMEMAP_POW2").bit;
+constexpr CapBit kTexCapsMipMap = flag(caps_flags::kTextureCaps, "MIPMAP");
+constexpr CapBit kTexCapsMipVolumeMap = flag(caps_flags::kTextureCaps, "MIPVOLUMEMAP");
+constexpr CapBit kTexCapsMipCubeMap = flag(caps_flags::kTextureCaps, "MIPCUBEMAP");
+constexpr uint32_t kMiscMaskZ = flag(caps_flags::kMiscCaps, "MASKZ").bit;
+constexpr uint32_t kMiscCullNone = flag(caps_flags::kMiscCaps, "CULLNONE").bit;
+constexpr uint32_t kMiscCullCW = flag(caps_flags::kMiscCaps, "CULLCW").bit;
+constexpr uint32_t kMiscCullCCW = flag(caps_flags::kMiscCaps, "CULLCCW").bit;
+constexpr uint32_t kMiscColorWriteEnable = flag(caps_flags::kMiscCaps, "COLORWRITEENABLE").bit;
+constexpr uint32_t kMiscIndependentWriteMasks = flag(caps_flags::kMiscCaps, "INDEPENDENTWRITEMASKS").bit;
+constexpr uint32_t kMiscMrtPostPixelShaderBlending = flag(caps_flags::kMiscCaps, "MRTPOSTPIXELSHADERBLENDING").bit;
+constexpr uint32_t kMiscMrtIndependentBitDepths = flag(caps_flags::kMiscCaps, "MRTINDEPENDENTBITDEPTHS").bit;
+constexpr uint32_t kAddressIndependentUV = flag(caps_flags::kAddressCaps, "INDEPENDENTUV").bit;
 
 // D3DPRASTERCAPS_* bits.
-constexpr CapBit kRasterDither{0x1, "DITHER"};
-constexpr CapBit kRasterZTest{0x10, "ZTEST"};
-constexpr CapBit kRasterFogVertex{0x80, "FOGVERTEX"};
-constexpr CapBit kRasterFogTable{0x100, "FOGTABLE"};
-constexpr CapBit kRasterMipMapLodBias{0x2000, "MIPMAPLODBIAS"};
-constexpr CapBit kRasterFogRange{0x10000, "FOGRANGE"};
-constexpr CapBit kRasterAnisotropy{0x20000, "ANISOTROPY"};
-constexpr CapBit kRasterWBuffer{0x40000, "WBUFFER"};
-constexpr CapBit kRasterScissorTest{0x1000000, "SCISSORTEST"};
-constexpr CapBit kRasterSlopeScaleDepthBias{0x2000000, "SLOPESCALEDEPTHBIAS"};
-constexpr CapBit kRasterDepthBias{0x4000000, "DEPTHBIAS"};
+constexpr CapBit kRasterDither = flag(caps_flags::kRasterCaps, "DITHER");
+constexpr CapBit kRasterZTest = flag(caps_flags::kRasterCaps, "ZTEST");
+constexpr CapBit kRasterFogVertex = flag(caps_flags::kRasterCaps, "FOGVERTEX");
+constexpr CapBit kRasterFogTable = flag(caps_flags::kRasterCaps, "FOGTABLE");
+constexpr CapBit kRasterMipMapLodBias = flag(caps_flags::kRasterCaps, "MIPMAPLODBIAS");
+constexpr CapBit kRasterFogRange = flag(caps_flags::kRasterCaps, "FOGRANGE");
+constexpr CapBit kRasterAnisotropy = flag(caps_flags::kRasterCaps, "ANISOTROPY");
+constexpr CapBit kRasterWBuffer = flag(caps_flags::kRasterCaps, "WBUFFER");
+constexpr CapBit kRasterScissorTest = flag(caps_flags::kRasterCaps, "SCISSORTEST");
+constexpr CapBit kRasterSlopeScaleDepthBias = flag(caps_flags::kRasterCaps, "SLOPESCALEDEPTHBIAS");
+constexpr CapBit kRasterDepthBias = flag(caps_flags::kRasterCaps, "DEPTHBIAS");
 
 // D3DTEXTUREFILTERTYPE and the D3DPTFILTERCAPS_* bit each needs as MIN and MAG filter.
 struct FilterCaps {
@@ -74,24 +74,23 @@ struct FilterCaps {
   CapBit min, mag;
 };
 constexpr FilterCaps kFilterCaps[] = {
-    {1, {0x100, "MINFPOINT"}, {0x1000000, "MAGFPOINT"}},
-    {2, {0x200, "MINFLINEAR"}, {0x2000000, "MAGFLINEAR"}},
-    {3, {0x400, "MINFANISOTROPIC"}, {0x4000000, "MAGFANISOTROPIC"}},
-    {6, {0x800, "MINFPYRAMIDALQUAD"}, {0x8000000, "MAGFPYRAMIDALQUAD"}},
-    {7, {0x1000, "MINFGAUSSIANQUAD"}, {0x10000000, "MAGFGAUSSIANQUAD"}},
-    {8, {0x40000, "CONVOLUTIONMONO"}, {0x40000, "CONVOLUTIONMONO"}},
+    {1, flag(caps_flags::kFilterCaps, "MINFPOINT"), flag(caps_flags::kFilterCaps, "MAGFPOINT")},
+    {2, flag(caps_flags::kFilterCaps, "MINFLINEAR"), flag(caps_flags::kFilterCaps, "MAGFLINEAR")},
+    {3, flag(caps_flags::kFilterCaps, "MINFANISOTROPIC"), flag(caps_flags::kFilterCaps, "MAGFANISOTROPIC")},
+    {6, flag(caps_flags::kFilterCaps, "MINFPYRAMIDALQUAD"), flag(caps_flags::kFilterCaps, "MAGFPYRAMIDALQUAD")},
+    {7, flag(caps_flags::kFilterCaps, "MINFGAUSSIANQUAD"), flag(caps_flags::kFilterCaps, "MAGFGAUSSIANQUAD")},
+    {8, flag(caps_flags::kFilterCaps, "CONVOLUTIONMONO"), flag(caps_flags::kFilterCaps, "CONVOLUTIONMONO")},
 };
 constexpr uint32_t kFilterNone = 0, kFilterPoint = 1, kFilterLinear = 2, kFilterAnisotropic = 3;
-constexpr CapBit kMipFilterPoint{0x10000, "MIPFPOINT"};
-constexpr CapBit kMipFilterLinear{0x20000, "MIPFLINEAR"};
+constexpr CapBit kMipFilterPoint = flag(caps_flags::kFilterCaps, "MIPFPOINT");
+constexpr CapBit kMipFilterLinear = flag(caps_flags::kFilterCaps, "MIPFLINEAR");
 
 // D3DTEXTUREADDRESS (WRAP 1 .. MIRRORONCE 5) -> D3DPTADDRESSCAPS_* bit.
 constexpr CapBit kAddressCaps[] = {
-    {0x1, "WRAP"}, {0x2, "MIRROR"}, {0x4, "CLAMP"}, {0x8, "BORDER"}, {0x20, "MIRRORONCE"}};
+    flag(caps_flags::kAddressCaps, "WRAP"), flag(caps_flags::kAddressCaps, "MIRROR"),
+    flag(caps_flags::kAddressCaps, "CLAMP"), flag(caps_flags::kAddressCaps, "BORDER"),
+    flag(caps_flags::kAddressCaps, "MIRRORONCE")};
 
-// D3DVERTEXBLENDFLAGS
-constexpr uint32_t kVertexBlendDisable = 0, kVertexBlendTweening = 255,
-                   kVertexBlend0Weights = 256;
 
 // ps_1_x texture instructions that sample the texture of the stage their
 // destination register names (t# in 1.0-1.3, r# for texld in 1.4).
@@ -501,15 +500,15 @@ class Validator {
                            lights, caps_.name, caps_.maxActiveLights);
     }
     const uint32_t blend = s_.rs(RS_VERTEXBLEND);
-    if (blend != kVertexBlendDisable && blend != kVertexBlendTweening) {
+    if (blend != VBF_DISABLE && blend != VBF_TWEENING) {
       // nWEIGHTS blends n+1 matrices; 0WEIGHTS one (useful with indices only).
-      const uint32_t matrices = blend == kVertexBlend0Weights ? 1 : blend + 1;
-      if (blend > 3 && blend != kVertexBlend0Weights)
+      const uint32_t matrices = blend == VBF_0WEIGHTS ? 1 : blend + 1;
+      if (blend > VBF_3WEIGHTS && blend != VBF_0WEIGHTS)
         return fmt::format("VERTEXBLEND {} is not a D3DVERTEXBLENDFLAGS", blend);
       if (matrices > caps_.maxVertexBlendMatrices)
         return fmt::format("VERTEXBLEND {}WEIGHTS blends {} matrices but {} has "
                            "MaxVertexBlendMatrices {}",
-                           blend == kVertexBlend0Weights ? 0 : blend, matrices, caps_.name,
+                           blend == VBF_0WEIGHTS ? 0 : blend, matrices, caps_.name,
                            caps_.maxVertexBlendMatrices);
     }
     if (s_.rs(RS_INDEXEDVERTEXBLENDENABLE) && caps_.maxVertexBlendMatrixIndex == 0)
