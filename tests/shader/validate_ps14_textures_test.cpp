@@ -46,8 +46,6 @@ TEST(ValidatorPs14, TexdepthAndBem) {
   EXPECT_TRUE(hasError("ps_1_4\ntexld r0, t0\ntexld r1, t1\nbem r2.rg, r0, r1\nmov r0, r2",
                        "bem is allowed only in phase 1 of ps_1_4"));
   EXPECT_TRUE(hasError("ps_1_4\ntexld r0, t0\ntexld r1, t1\nbem r2, r0, r1\nphase\nmov r0, r2", "bem writes .rg only"));
-  EXPECT_TRUE(hasError("ps_1_4\ntexld r0, t0\ntexld r1, t1\nbem r2.rg, r0, r1\nbem r3.rg, r0, r1\nphase\nmov r0, r2",
-                       "ps_1_4 allows 1 bem instruction per shader"));
 }
 
 }  // namespace

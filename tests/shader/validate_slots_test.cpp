@@ -1,8 +1,7 @@
 // Slot check: instruction slots as the D3D9 docs count them (macros expanded,
 // a co-issued pair once, predication one more): ps_1_1 – ps_1_3 allow 4 texture and 8
 // arithmetic instructions, ps_1_4 6 and 8 per phase, vs_1_1 128 slots, ps_2_0 32
-// texture and 64 arithmetic, ps_2_x NumInstructionSlots (96 – 512); ps_1_2 – ps_1_3 cmp
-// at most 3 and dp4 at most 4 per shader, ps_1_4 bem once.
+// texture and 64 arithmetic, ps_2_x NumInstructionSlots (96 – 512).
 #include "shader/validator_test_util.h"
 
 namespace refx::shader {
@@ -26,16 +25,6 @@ TEST(ValidatorPs11, TextureSlots) {
   EXPECT_TRUE(hasError("ps_1_1\ntex t0\ntex t1\ntex t2\ntex t3\ntex t4\nmov r0, t3",
                        "ps_1_1 allows 4 texture instructions, this shader has 5"));
   EXPECT_TRUE(hasError("ps_1_1\ntex t4\nmov r0, t4", "t4 is out of range: ps_1_1 has 4 texture registers (t0..t3)"));
-}
-
-TEST(ValidatorPs11, CmpAndDp4Limits) {
-  // ps_1_2: cmp 2 slots, at most 3; dp4 2 slots, at most 4.
-  std::string three = "ps_1_2\ndef c0, 1, 1, 1, 1\ntex t0\ncmp r0, t0, c0, -c0\ncmp r1, r0, c0, -c0\ncmp r0, r1, c0, -c0\n";
-  EXPECT_TRUE(isValid(three));
-  EXPECT_TRUE(hasError(three + "cmp r1, r0, c0, -c0\nmov r0, r1", "ps_1_2 allows 3 cmp instructions per shader"));
-  EXPECT_TRUE(hasError(three + "mov r1, r0\nmov r0, r1\nmov r1, r0", "ps_1_2 allows 8 arithmetic instructions, this shader has 9"));
-  EXPECT_TRUE(hasError("ps_1_2\ntex t0\ncmp r0, t0, r0, t0", "cmp in ps_1_2 cannot write a register it reads (r0)"));
-  EXPECT_TRUE(isValid("ps_1_4\ntexld r0, t0\ncmp r0, r0, r0, r0"));
 }
 
 TEST(ValidatorPs14, SlotsPerPhase) {

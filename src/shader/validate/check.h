@@ -110,6 +110,8 @@ inline int swizzleComponent(uint8_t swizzle, int c) { return (swizzle >> (2 * c)
 inline bool isReplicate(uint8_t s) { return s == 0x00 || s == 0x55 || s == 0xAA || s == 0xFF; }
 inline constexpr uint8_t kIdentitySwizzle = 0xE4;
 
+// Opcode facts, read from the opcode table (opcode_table.h).
+bool isReservedOpcode(Opcode op);  // texm3x3diff
 bool isMatrixTex(Opcode op);   // texm3x2pad … texm3x3
 bool isFlowOp(Opcode op);      // call … breakp
 bool isFreeOp(Opcode op);      // def*, dcl, comment, phase, label: no instruction slot

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "refx/shader/opcode_table.h"
 #include "shader/validate/check.h"
 
 namespace refx::shader::checks {
@@ -12,45 +13,17 @@ using R = RegType;
 
 // ---- names for messages ----------------------------------------------------------
 
-struct OpName {
-  Opcode op;
-  const char* name;
-};
-constexpr OpName kOpNames[] = {
-    {O::Nop, "nop"}, {O::Mov, "mov"}, {O::Add, "add"}, {O::Sub, "sub"}, {O::Mad, "mad"},
-    {O::Mul, "mul"}, {O::Rcp, "rcp"}, {O::Rsq, "rsq"}, {O::Dp3, "dp3"}, {O::Dp4, "dp4"},
-    {O::Min, "min"}, {O::Max, "max"}, {O::Slt, "slt"}, {O::Sge, "sge"}, {O::Exp, "exp"},
-    {O::Log, "log"}, {O::Lit, "lit"}, {O::Dst, "dst"}, {O::Lrp, "lrp"}, {O::Frc, "frc"},
-    {O::M4x4, "m4x4"}, {O::M4x3, "m4x3"}, {O::M3x4, "m3x4"}, {O::M3x3, "m3x3"},
-    {O::M3x2, "m3x2"}, {O::Call, "call"}, {O::CallNZ, "callnz"}, {O::Loop, "loop"},
-    {O::Ret, "ret"}, {O::EndLoop, "endloop"}, {O::Label, "label"}, {O::Dcl, "dcl"},
-    {O::Pow, "pow"}, {O::Crs, "crs"}, {O::Sgn, "sgn"}, {O::Abs, "abs"}, {O::Nrm, "nrm"},
-    {O::SinCos, "sincos"}, {O::Rep, "rep"}, {O::EndRep, "endrep"}, {O::If, "if"},
-    {O::IfC, "if_comp"}, {O::Else, "else"}, {O::EndIf, "endif"}, {O::Break, "break"},
-    {O::BreakC, "break_comp"}, {O::MovA, "mova"}, {O::DefB, "defb"}, {O::DefI, "defi"},
-    {O::TexCoord, "texcoord"}, {O::TexKill, "texkill"}, {O::Tex, "tex"}, {O::TexBem, "texbem"},
-    {O::TexBemL, "texbeml"}, {O::TexReg2AR, "texreg2ar"}, {O::TexReg2GB, "texreg2gb"},
-    {O::TexM3x2Pad, "texm3x2pad"}, {O::TexM3x2Tex, "texm3x2tex"}, {O::TexM3x3Pad, "texm3x3pad"},
-    {O::TexM3x3Tex, "texm3x3tex"}, {O::TexM3x3Diff, "texm3x3diff"},
-    {O::TexM3x3Spec, "texm3x3spec"}, {O::TexM3x3VSpec, "texm3x3vspec"}, {O::ExpP, "expp"},
-    {O::LogP, "logp"}, {O::Cnd, "cnd"}, {O::Def, "def"}, {O::TexReg2RGB, "texreg2rgb"},
-    {O::TexDP3Tex, "texdp3tex"}, {O::TexM3x2Depth, "texm3x2depth"}, {O::TexDP3, "texdp3"},
-    {O::TexM3x3, "texm3x3"}, {O::TexDepth, "texdepth"}, {O::Cmp, "cmp"}, {O::Bem, "bem"},
-    {O::Dp2Add, "dp2add"}, {O::Dsx, "dsx"}, {O::Dsy, "dsy"}, {O::TexLdd, "texldd"},
-    {O::SetP, "setp"}, {O::TexLdl, "texldl"}, {O::BreakP, "breakp"}, {O::Phase, "phase"},
-    {O::Comment, "comment"},
-};
-
+// Instruction names as the version writes them (tex / texld / texldp, texcoord /
+// texcrd) come from the opcode table; the comparison forms keep the names the docs use
+// in prose (if_comp, break_comp), and texcoord stays texcrd from ps_1_4 on, as the
+// validator's messages have always named them.
 std::string opName(const Instruction& in, Version v) {
-  if (in.opcode == O::Tex && (v.atLeast(1, 4))) {
-    if (v.major >= 2 && (in.control & 1)) return "texldp";
-    if (v.major >= 2 && (in.control & 2)) return "texldb";
-    return "texld";
-  }
+  if (in.opcode == O::IfC) return "if_comp";
+  if (in.opcode == O::BreakC) return "break_comp";
   if (in.opcode == O::TexCoord && v.atLeast(1, 4)) return "texcrd";
-  for (const OpName& n : kOpNames)
-    if (n.op == in.opcode) return n.name;
-  return fmt::format("opcode {}", unsigned(in.opcode));
+  std::string_view name = mnemonicIn(in.opcode, in.control, v);
+  if (name.empty()) return fmt::format("opcode {}", unsigned(in.opcode));
+  return std::string(name);
 }
 
 std::string regName(RegType t, unsigned index, Version v) {
@@ -101,43 +74,31 @@ const char* srcModName(SrcMod m) {
   return i < std::size(kNames) ? kNames[i] : "(reserved)";
 }
 
-bool isMatrixTex(Opcode op) {
-  switch (op) {
-    case O::TexM3x2Pad: case O::TexM3x2Tex: case O::TexM3x2Depth: case O::TexM3x3Pad:
-    case O::TexM3x3Tex: case O::TexM3x3Spec: case O::TexM3x3VSpec: case O::TexM3x3:
-      return true;
-    default:
-      return false;
-  }
+// Opcode facts from the opcode table (opcode_table.h).
+namespace {
+uint16_t properties(Opcode op) {
+  const OpcodeInfo* info = findOpcode(op);
+  return info ? info->properties : 0;
 }
-bool isFlowOp(Opcode op) {
-  switch (op) {
-    case O::Call: case O::CallNZ: case O::Loop: case O::Ret: case O::EndLoop: case O::Label:
-    case O::Rep: case O::EndRep: case O::If: case O::IfC: case O::Else: case O::EndIf:
-    case O::Break: case O::BreakC: case O::BreakP:
-      return true;
-    default:
-      return false;
-  }
+}  // namespace
+
+bool isReservedOpcode(Opcode op) {
+  for (const OpcodeInfo& info : allOpcodes())
+    if (info.opcode == op) return info.has(OpReserved);
+  return false;
 }
-bool isFreeOp(Opcode op) {
-  return op == O::Def || op == O::DefI || op == O::DefB || op == O::Dcl || op == O::Comment ||
-         op == O::Phase || op == O::Label;
-}
-// Scalar instructions whose source needs a replicate swizzle in SM2+ (all sources).
-bool isScalarOp(Opcode op) {
-  return op == O::Rcp || op == O::Rsq || op == O::Exp || op == O::Log || op == O::ExpP ||
-         op == O::LogP || op == O::Pow;
-}
+bool isMatrixTex(Opcode op) { return properties(op) & OpTextureMatrix; }
+bool isFlowOp(Opcode op) { return properties(op) & OpFlowControl; }
+bool isFreeOp(Opcode op) { return op == O::Comment || (properties(op) & OpNoSlot); }
+bool isScalarOp(Opcode op) { return properties(op) & OpReplicateSwizzle; }
 int matrixRows(Opcode op) {
-  switch (op) {
-    case O::M4x4: case O::M3x4: return 4;
-    case O::M4x3: case O::M3x3: return 3;
-    case O::M3x2: return 2;
-    default: return 0;
-  }
+  const OpcodeInfo* info = findOpcode(op);
+  return info ? info->matrixRows : 0;
 }
-uint8_t matrixRowMask(Opcode op) { return (op == O::M4x4 || op == O::M4x3) ? 0xF : 0x7; }
+uint8_t matrixRowMask(Opcode op) {
+  const OpcodeInfo* info = findOpcode(op);
+  return info && info->matrixColumns == 4 ? 0xF : 0x7;
+}
 
 // ---- instruction costs -----------------------------------------------------------
 
@@ -244,10 +205,12 @@ uint8_t Context::readMask(const Instruction& in, int s) const {
   const SrcParam& p = in.src[s];
   uint8_t dstMask = in.hasDst ? in.dst.writeMask : 0xF;
   uint8_t used = dstMask;  // per-component operations by default
+  // Scalar operations read one component; matrix macros one row's columns.
+  if (isScalarOp(in.opcode)) return uint8_t(1 << swizzleComponent(p.swizzle, 0));
+  if (matrixRows(in.opcode)) used = matrixRowMask(in.opcode);
   switch (in.opcode) {
     case O::Dp3: case O::Crs: used = 0x7; break;
     case O::Dp4: used = 0xF; break;
-    case O::Rcp: case O::Rsq: case O::Exp: case O::Log: case O::ExpP: case O::LogP: case O::Pow:
     case O::IfC: case O::BreakC: case O::If: case O::CallNZ: case O::BreakP:
       used = 0x1;
       break;
@@ -255,8 +218,6 @@ uint8_t Context::readMask(const Instruction& in, int s) const {
     case O::Dp2Add: used = s == 2 ? 0x1 : 0x3; break;
     case O::Lit: used = 0xB; break;
     case O::Dst: used = s == 0 ? 0x6 : 0xA; break;
-    case O::M4x4: case O::M4x3: used = 0xF; break;
-    case O::M3x4: case O::M3x3: case O::M3x2: used = 0x7; break;
     case O::Nrm: used = 0x7 | (dstMask & 0x8); break;
     case O::Bem: used = 0x3; break;
     case O::Sgn: used = s == 0 ? dstMask : 0; break;

@@ -10,7 +10,7 @@ using O = Opcode;
 
 bool OpcodeCheck::accept(Context& ctx, const Instruction& in) {
   ctx.rule = findOpcodeRule(ctx.rules, in.opcode);
-  if (in.opcode == O::TexM3x3Diff) {
+  if (isReservedOpcode(in.opcode)) {
     ctx.error(in, "V1001", "texm3x3diff is a reserved opcode and not valid in any shader");
     return false;
   }
