@@ -60,7 +60,8 @@ struct EffectDiagnostic {
   SourceLocation where;
   std::string message;
   bool error = true;
-  std::string str() const;  // "file:line:col: error: message"
+  std::string code;         // "F1201", "A2001" (docs/diagnostics.md); empty when the finding has none
+  std::string str() const;  // "file:line:col: error F1201: message" ("error: message" without a code)
 };
 
 struct PassDesc {
