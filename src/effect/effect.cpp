@@ -1021,12 +1021,20 @@ struct Effect::Impl {
     files = ast.files;
     functions = ast.functions;
     preReleaseDialect = ast.preReleaseDialect;
+    // A declaration that cannot be made leaves its parameter out; every such error of
+    // the file is reported, one per line, in the Error thrown after the declarations.
+    std::string declarationErrors;
     for (ParameterDecl& decl : ast.parameters) {
-      if (findParam(decl.desc.name))
-        failCode("F1206", decl.where, "redefinition of parameter '{}'", decl.desc.name);
       Param p;
-      p.decl = std::move(decl);
-      initParameter(p, options.pool);
+      try {
+        if (findParam(decl.desc.name))
+          failCode("F1206", decl.where, "redefinition of parameter '{}'", decl.desc.name);
+        p.decl = std::move(decl);
+        initParameter(p, options.pool);
+      } catch (const Error& e) {
+        declarationErrors += (declarationErrors.empty() ? "" : "\n") + std::string(e.what());
+        continue;
+      }
       params.push_back(std::move(p));
       Param& q = params.back();
       // Shader and sampler parameters: a bad one is reported and left empty, so the
@@ -1050,6 +1058,7 @@ struct Effect::Impl {
         reportFollowing(e);
       }
     }
+    if (!declarationErrors.empty()) throw Error(declarationErrors);
     for (TechniqueDecl& td : ast.techniques) {
       Technique t;
       t.desc.name = td.name;

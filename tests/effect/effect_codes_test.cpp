@@ -124,6 +124,13 @@ TEST(EffectCodes, SeveralSyntaxErrorsAreReportedAtOnce) {
   EXPECT_EQ(codesOf(text), (std::vector<std::string>{"F1100@3", "F1100@6", "F1100@7", "F1100@9"}));
 }
 
+TEST(EffectCodes, EveryBadDeclarationIsReported) {
+  // A redefinition and an initializer of the wrong size; the good parameter between
+  // them is no error.
+  EXPECT_EQ(codesOf("float a;\nfloat a;\nfloat b = 2;\nfloat4 v = float4(1, 2);\n"),
+            (std::vector<std::string>{"F1206@2", "F1205@4"}));
+}
+
 TEST(EffectCodes, AsmBlocksReportTheAssemblersCodesAtTheFilesLines) {
   const std::string text = pass(
       "PixelShader = asm {\n"
