@@ -1,19 +1,13 @@
-// Instruction-form check: cnd in ps_1_1 – ps_1_3 takes r0.a; matrix macros take
-// a plain matrix operand within the register file and write .xyz (m3x3, m4x3) or .xy
-// (m3x2); sincos, crs, nrm, pow and sgn write temporaries with their documented masks
-// and distinct scratch operands; frc in vs_1_1 writes .y or .xy.
+// Instruction-form check: matrix macros take a plain matrix operand within the
+// register file and write .xyz (m3x3, m4x3) or .xy (m3x2); sincos, crs, nrm, pow and
+// sgn write temporaries with their documented masks and distinct scratch operands;
+// frc in vs_1_1 writes .y or .xy.
 #include "shader/validator_test_util.h"
 
 namespace refx::shader {
 namespace {
 
 using namespace validator_test;
-
-TEST(ValidatorPs11, Cnd) {
-  EXPECT_TRUE(isValid("ps_1_1\ntex t0\ntex t1\nmov r0, t0\ncnd r0, r0.a, t0, t1"));
-  EXPECT_TRUE(hasError("ps_1_1\ntex t0\ntex t1\nmov r1, t0\ncnd r0, r1.a, t0, t1", "cnd in ps_1_1 takes r0.a as its first source"));
-  EXPECT_TRUE(isValid("ps_1_4\ntexld r0, t0\ntexld r1, t1\ncnd r0, r1, r0, r1"));
-}
 
 TEST(ValidatorVs, InstructionForms) {
   EXPECT_TRUE(hasError("vs_1_1\nfrc r0.x, v0\nmov oPos, v0", "frc in vs_1_1 writes .y or .xy"));

@@ -14,10 +14,7 @@ TEST(ValidatorPs11, CmpAndDp4Limits) {
   EXPECT_TRUE(isValid(three));
   EXPECT_TRUE(hasError(three + "cmp r1, r0, c0, -c0\nmov r0, r1", "ps_1_2 allows 3 cmp instructions per shader"));
   EXPECT_TRUE(hasError(three + "mov r1, r0\nmov r0, r1\nmov r1, r0", "ps_1_2 allows 8 arithmetic instructions, this shader has 9"));
-  EXPECT_TRUE(hasError("ps_1_2\ntex t0\ncmp r0, t0, r0, t0", "cmp in ps_1_2 cannot write a register it reads (r0)"));
-  EXPECT_TRUE(isValid("ps_1_4\ntexld r0, t0\ncmp r0, r0, r0, r0"));
 }
-
 
 TEST(ValidatePerShaderCounts, Dp4AndBem) {
   // Four dp4 in ps_1_3 take 8 slots, the whole arithmetic budget, and are allowed.

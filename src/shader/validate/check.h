@@ -150,6 +150,7 @@ std::unique_ptr<Check> makeReadPortCheck();
 std::unique_ptr<Check> makeTextureSequenceCheck();
 std::unique_ptr<Check> makePs14TextureCheck();
 std::unique_ptr<Check> makeInstructionFormCheck();
+std::unique_ptr<Check> makePs11FormCheck();
 std::unique_ptr<Check> makeSamplingCheck();
 std::unique_ptr<Check> makeDeclaredInputCheck();
 std::unique_ptr<Check> makeFlowControlCheck();

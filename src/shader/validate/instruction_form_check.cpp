@@ -2,8 +2,8 @@
 // operations take a replicate swizzle; matrix macros take a plain matrix operand,
 // write .xyz (m4x3, m3x3) or .xy (m3x2) and never a register they read; sincos, crs,
 // nrm, pow and sgn write temporaries with their documented masks and scratch
-// operands; a0 is written by mova (vs_1_1: mov a0.x). ps_1_1 – ps_1_3: cnd takes r0.a
-// as its condition, cmp never writes a register it reads.
+// operands; a0 is written by mova (vs_1_1: mov a0.x). (ps_1_1 – ps_1_3 forms:
+// ps11_form_check.cpp.)
 #include "shader/validate/check.h"
 
 namespace refx::shader::checks {
@@ -16,7 +16,6 @@ class InstructionFormCheck final : public Check {
  public:
   void instruction(Context& ctx, const Instruction& in) override {
     if (isDefOp(in.opcode) || in.opcode == O::Dcl || in.opcode == O::Phase) return;
-    if (ctx.ps11()) ps11(ctx, in);
     if (ctx.v.isVertex() && ctx.v.major == 1 && in.hasDst && in.dst.type == R::Addr &&
         (in.opcode != O::Mov || in.dst.writeMask != 0x1))
       ctx.error(in, "V1808", "vs_1_1 writes a0 only with mov a0.x");
@@ -24,20 +23,6 @@ class InstructionFormCheck final : public Check {
   }
 
  private:
-  static void ps11(Context& ctx, const Instruction& in) {
-    if (ctx.isTextureOp()) return;
-    if (in.opcode == O::Cnd && in.srcCount >= 1) {
-      const SrcParam& c = in.src[0];
-      if (c.type != R::Temp || c.index != 0 || c.swizzle != 0xFF || c.mod != SrcMod::None)
-        ctx.error(in, "V1809", "cnd in {} takes r0.a as its first source", ctx.name);
-    }
-    if (in.opcode == O::Cmp && in.hasDst)
-      for (int s = 0; s < in.srcCount; ++s)
-        if (in.src[s].type == in.dst.type && in.src[s].index == in.dst.index)
-          ctx.error(in, "V1810", "cmp in {} cannot write a register it reads ({})", ctx.name,
-                    ctx.reg(in.dst.type, in.dst.index));
-  }
-
   static void sm2(Context& ctx, const Instruction& in) {
     // Scalar operations take one component: a replicate swizzle.
     auto needReplicate = [&](int s, const char* what) {
