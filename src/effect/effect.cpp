@@ -758,9 +758,18 @@ struct Effect::Impl {
       failCode("F1207", e.assembly.where, "{}: expected a {} shader, the asm block is {}", what, vertex ? "vertex" : "pixel",
                         parsed.version.name());
     sh->tokens = shader::encode(parsed);
-    // The version's rules, reported at the instruction (the block's text keeps file positions).
-    for (const Diagnostic& d : shader::validate(parsed, validationCaps()))
-      failAt(SourceLocation{e.assembly.file, d.where.line, d.where.column}, "{}: {}", what, d.message);
+    // The version's rules, every violation with its validator code, reported at the
+    // instruction (the block's text keeps file positions).
+    std::vector<Diagnostic> violations = shader::validate(parsed, validationCaps());
+    if (!violations.empty()) {
+      for (Diagnostic& d : violations) {
+        d.where.file = e.assembly.file;
+        d.message = what + ": " + d.message;
+      }
+      EffectError error(violations.front(), false);
+      error.also.assign(violations.begin() + 1, violations.end());
+      throw error;
+    }
     makeRuntimeShader(*sh, e.assembly.where, what);
     return sh;
   }

@@ -138,8 +138,7 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
         // Everything refx emits must pass refx's own validator for the profile.
         shader::SlotCount slots = shader::countSlots(sh);
         for (const Diagnostic& d : shader::validate(sh)) {
-          bool limit = d.message.find("allows") != std::string::npos;
-          if (limit)
+          if (shader::isLimitViolation(d.code))
             sink.error({file, d.where.line, d.where.column}, "X4532", "cannot map expression to {} instruction set: {}",
                        options.profile, d.message);
           else

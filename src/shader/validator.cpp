@@ -132,6 +132,17 @@ std::vector<Diagnostic> validate(const Shader& shader, const ValidationCaps& cap
   return sink.all();
 }
 
+bool isLimitViolation(std::string_view code) {
+  static constexpr std::string_view kLimits[] = {
+      "V1207",  // swizzle forms of the version
+      "V1401", "V1412",  // ps_1_4 phases, _dz uses
+      "V1703", "V1706",  // flow-control count and nesting depth
+      "V1901", "V1902", "V1903", "X5426", "X5608"};  // slots, per-shader counts, dependent reads
+  for (std::string_view limit : kLimits)
+    if (code == limit) return true;
+  return false;
+}
+
 std::string describeViolations(std::string_view prefix, const std::vector<Diagnostic>& violations) {
   std::string out;
   for (const Diagnostic& d : violations) {

@@ -3,6 +3,7 @@
 // syntax errors of one file reported at once; the assembler's codes for asm blocks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <regex>
 #include <string>
 #include <vector>
@@ -140,6 +141,22 @@ TEST(EffectCodes, AsmBlocksReportTheAssemblersCodesAtTheFilesLines) {
       "  mov r0, t0.xq\n"    // line 7: bad swizzle
       "};");
   EXPECT_EQ(codesOf(text), (std::vector<std::string>{"A2001@6", "A2008@7"}));
+}
+
+// ps_1_1 has t0-t3 (V1102 for t4, D3D9's register table), reads r1 before anything
+// writes it (V1930) and puts every texture instruction before the arithmetic ones
+// (V1303): three rules broken, each reported at its line of the file.
+TEST(EffectCodes, AsmBlocksReportEveryValidatorViolationWithItsCode) {
+  const std::string text = pass(
+      "PixelShader = asm {\n"
+      "  ps.1.1\n"
+      "  tex t4\n"        // line 5
+      "  mov r0, r1\n"    // line 6
+      "  tex t0\n"        // line 7
+      "};");
+  const std::vector<std::string> codes = codesOf(text);
+  for (const char* expected : {"V1102@5", "V1930@6", "V1303@7"})
+    EXPECT_NE(std::find(codes.begin(), codes.end(), expected), codes.end()) << expected;
 }
 
 TEST(EffectCodes, ReadingStopsAfterOneHundredErrors) {

@@ -336,18 +336,20 @@ TEST(EffectErrors, BadReferencesKeywordsAndShadersAreLocated) {
     msgs.push_back(d.str());
     codes.push_back(d.code + "@" + std::to_string(d.where.line) + ":" + std::to_string(d.where.column));
   }
-  ASSERT_EQ(msgs.size(), 6u);
+  ASSERT_EQ(msgs.size(), 7u);
   EXPECT_EQ(codes[0], "F1200@2:38");  // unknown parameter
   EXPECT_EQ(codes[1], "F1203@3:37");  // a float where a texture belongs
   EXPECT_EQ(codes[2], "F1203@4:35");  // not a D3DCULL keyword
   EXPECT_EQ(msgs[2], "refs.fx:4:35: error F1203: 'Sideways' is not a value of 'CullMode' (a D3DCULL keyword or a parameter)");
   // The assembler's position inside the asm block is the file's position.
-  EXPECT_EQ(msgs[3].rfind("refs.fx:7:", 0), 0u) << msgs[3];
+  // Every rule t7 breaks in ps_1_1 (t0-t3 only, and no tex writes it), with the validator's codes.
+  EXPECT_EQ(codes[3], "V1102@7:5") << msgs[3];
   EXPECT_NE(msgs[3].find("t7"), std::string::npos) << msgs[3];
-  EXPECT_EQ(codes[4], "F1202@9:32");  // ColorOp has stages 0 to 7
+  EXPECT_EQ(codes[4], "V1930@7:5") << msgs[4];
+  EXPECT_EQ(codes[5], "F1202@9:32");  // ColorOp has stages 0 to 7
   // fxc's code for an entry point the file does not define.
-  EXPECT_EQ(msgs[5].rfind("refs.fx:10:", 0), 0u) << msgs[5];
-  EXPECT_NE(msgs[5].find("X3501: 'main': entrypoint not found"), std::string::npos) << msgs[5];
+  EXPECT_EQ(msgs[6].rfind("refs.fx:10:", 0), 0u) << msgs[6];
+  EXPECT_NE(msgs[6].find("X3501: 'main': entrypoint not found"), std::string::npos) << msgs[6];
   for (Handle t = 0; t < fx->techniqueCount(); ++t) EXPECT_FALSE(fx->techniqueDesc(t).brokenReason.empty());
 }
 

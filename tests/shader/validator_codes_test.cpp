@@ -235,3 +235,15 @@ TEST(ValidatorCodes, DocumentedCodesAreTheSourceCodes) {
 
 }  // namespace
 }  // namespace refx::shader
+
+// A compiler maps limit violations to "cannot map to the profile" (fxc's X4532) and the
+// rest to internal errors: slots (X5608: ps_1_1 has 8 arithmetic slots) and flow-control
+// depth (V1706) are limits; a read before a write (V1930) or a register beyond the file
+// (V1102) is a form error.
+TEST(ValidatorCodes, LimitViolationsAreTheLimitCodes) {
+  EXPECT_TRUE(refx::shader::isLimitViolation("X5608"));
+  EXPECT_TRUE(refx::shader::isLimitViolation("V1706"));
+  EXPECT_TRUE(refx::shader::isLimitViolation("V1902"));
+  EXPECT_FALSE(refx::shader::isLimitViolation("V1930"));
+  EXPECT_FALSE(refx::shader::isLimitViolation("V1102"));
+}

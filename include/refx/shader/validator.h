@@ -45,6 +45,11 @@ std::vector<Diagnostic> validate(const Shader& shader, const ValidationCaps& cap
 void validate(const Shader& shader, DiagnosticSink& sink, std::string_view fileName,
               const ValidationCaps& caps = {});
 
+// Violations of a limit of the version or the device (instruction slots, texture
+// instructions, dependent-read depth, nesting depth, swizzle forms) rather than of the
+// form of an instruction: a compiler reports these as "cannot map to the profile".
+bool isLimitViolation(std::string_view code);
+
 // One line per violation, "<prefix>: <code>: <message>" (the form ShaderObject
 // reports for a decoded shader, with the version as the prefix).
 std::string describeViolations(std::string_view prefix, const std::vector<Diagnostic>& violations);
