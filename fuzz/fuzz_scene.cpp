@@ -16,7 +16,7 @@
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/caps.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "refx/core/diagnostics.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 #include "refx/resource/image_io.h"
 
 namespace fs = std::filesystem;

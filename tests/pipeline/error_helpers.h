@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "refx/core/diagnostics.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 namespace refx::test {
 

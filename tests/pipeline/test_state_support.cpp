@@ -14,7 +14,7 @@
 #include "pipeline/state_support.h"
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 using namespace refx;
 using namespace refx::test;

@@ -18,7 +18,7 @@
 #include "refx/pipeline/device.h"
 #include "refx/resource/image_io.h"
 #include "refx/shader/assembler.h"
-#include "racorx_scene.h"
+#include "refx/scene/racorx_scene.h"
 #include "samples.h"
 
 namespace refx::cli {

@@ -10,7 +10,7 @@
 #include "commands.h"
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 #include "refx/resource/image_io.h"
 
 namespace refx::cli {

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "builtin_assets.h"
-#include "mesh_binding.h"
+#include "refx/scene/mesh_binding.h"
 #include "refx/core/text.h"
 #include "refx/d3dx/obj.h"
 #include "refx/d3dx/teapot.h"

@@ -12,7 +12,7 @@
 #include <algorithm>
 #include <set>
 
-#include "../../tools/refx/racorx_scene.h"
+#include "refx/scene/racorx_scene.h"
 
 namespace refx {
 namespace {

@@ -9,7 +9,7 @@
 #include <variant>
 #include <vector>
 
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 namespace fs = std::filesystem;
 using namespace refx;

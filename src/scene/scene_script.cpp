@@ -1,5 +1,5 @@
 // Scene script parser: text -> typed commands with every name and value resolved.
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 #include "refx/core/text.h"
 
 #include <algorithm>

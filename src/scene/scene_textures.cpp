@@ -6,7 +6,7 @@
 #include <functional>
 
 #include "refx/core/diagnostics.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 namespace refx {
 

@@ -6,7 +6,7 @@
 
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 #include "refx/resource/image_io.h"
 #include "refx/shader/assembler.h"
 #include "refx/shader/validator.h"

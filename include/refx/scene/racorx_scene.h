@@ -23,7 +23,7 @@
 #include "refx/d3dx/texture_fill.h"
 #include "refx/pipeline/device.h"
 #include "refx/shader/assembler.h"
-#include "mesh_binding.h"
+#include "refx/scene/mesh_binding.h"
 
 namespace refx::samples::racorx {
 
