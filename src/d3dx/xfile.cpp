@@ -684,8 +684,8 @@ Mesh merge(const std::vector<Part>& parts, const std::string& name) {
         sets = std::max(sets, s + 1);
       }
   }
-  uint32_t code = fvf::XYZ | (normals ? fvf::NORMAL : 0) | (colors ? fvf::DIFFUSE : 0) | fvf::tex(sets);
-  for (int s = 0; s < sets; ++s) code |= fvf::texCoordSize(dims[s] ? dims[s] : 2, s);
+  uint32_t code = d3d::FVF_XYZ | (normals ? d3d::FVF_NORMAL : 0) | (colors ? d3d::FVF_DIFFUSE : 0) | d3d::fvfTex(sets);
+  for (int s = 0; s < sets; ++s) code |= d3d::fvfTexCoordSize(dims[s] ? dims[s] : 2, s);
 
   std::vector<Built> built;
   uint64_t vertexCount = 0, indexCount = 0;

@@ -99,7 +99,7 @@ std::string xFileText(const Mesh& mesh) {
     out += " }\n";
   }
 
-  int sets = fvf::texCount(mesh.fvf);
+  int sets = d3d::fvfTexCount(mesh.fvf);
   bool set0Standard = sets > 0 && l.texDims[0] == 2;
   if (set0Standard) {
     fmt::format_to(std::back_inserter(out), " MeshTextureCoords {{\n  {};\n", nv);

@@ -129,7 +129,7 @@ Scene makeScene(const std::string& geom, bool tangents) {
   Scene s;
   if (geom == "quad" && tangents) {
     // The same clip-space quad, facing the viewer (-z), tangent +x.
-    s.mesh = d3dx::Mesh(d3dx::fvf::XYZ | d3dx::fvf::NORMAL | d3dx::fvf::tex(2) | d3dx::fvf::texCoordSize(3, 1), 4, 2);
+    s.mesh = d3dx::Mesh(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2) | d3d::fvfTexCoordSize(3, 1), 4, 2);
     const float P[4][2] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
     const float T[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     for (uint32_t i = 0; i < 4; ++i) {
@@ -149,7 +149,7 @@ Scene makeScene(const std::string& geom, bool tangents) {
     s.sphere = true;
   } else if (geom == "quad") {
     // Clip-space quad with identity transforms, white diffuse, (u,v) 0..1.
-    s.mesh = d3dx::Mesh(d3dx::fvf::XYZ | d3dx::fvf::DIFFUSE | d3dx::fvf::tex(1), 4, 2);
+    s.mesh = d3dx::Mesh(d3d::FVF_XYZ | d3d::FVF_DIFFUSE | d3d::fvfTex(1), 4, 2);
     const float P[4][2] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
     const float T[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     for (uint32_t i = 0; i < 4; ++i) {
@@ -161,7 +161,7 @@ Scene makeScene(const std::string& geom, bool tangents) {
   } else if (geom == "sphere") {
     // 64x32 segments as the anchor; the texture wraps twice around.
     d3dx::Mesh m = d3dx::createTexturedSphere(1.0f, 64, 32);
-    s.mesh = d3dx::cloneMeshFVF(m, d3dx::fvf::XYZ | d3dx::fvf::NORMAL | d3dx::fvf::tex(1));
+    s.mesh = d3dx::cloneMeshFVF(m, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
     for (uint32_t i = 0; i < s.mesh.vertexCount(); ++i) {
       Vec4 t = s.mesh.texCoord(i, 0);
       s.mesh.setTexCoord(i, 0, t.x * 2.0f, t.y);

@@ -251,7 +251,7 @@ void EffectScene::bindDeclarationStream(Device& device) {
     }
   }
   const d3dx::Mesh& m = mesh();
-  const d3dx::FVFLayout layout = m.layout();
+  const FVFLayout layout = m.layout();
   const uint32_t stride = decl.streamStride(0);
   auto vb = std::make_shared<VertexBuffer>();
   vb->data.assign(size_t(stride) * m.vertexCount(), 0);
