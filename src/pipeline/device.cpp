@@ -962,7 +962,6 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.blend.dstA = separate ? st.rs(RS_DESTBLENDALPHA) : d.blend.dst;
   d.blend.opA = separate ? st.rs(RS_BLENDOPALPHA) : d.blend.op;
   d.blend.factor = colorFromD3D(st.rs(RS_BLENDFACTOR));
-  std::vector<uint64_t> shadedCounter(1, 0);
   d.pixelsShaded = &stats_.pixelsShaded;
   std::atomic<uint32_t> pixelBoundStops{0};
   d.execContext.boundStops = &pixelBoundStops;

@@ -138,7 +138,6 @@ class Device {
   StateBlock createStateBlock() const { return StateBlock(state_); }
   void applyStateBlock(const StateBlock& sb) { state_ = sb.state(); }
   const DeviceState& state() const { return state_; }
-  DeviceState& mutableState() { return state_; }
 
   // ValidateDevice against the active caps profile.
   // (with the render targets bound: NumSimultaneousRTs, MRTINDEPENDENTBITDEPTHS)
