@@ -11,9 +11,7 @@
 #include "refx/shader/assembler.h"
 #include "refx/shader/validator.h"
 
-namespace refx {
-
-using namespace scene;
+namespace refx::scene {
 
 namespace {
 
@@ -220,4 +218,4 @@ SceneOutput runSceneScript(const SceneScript& script, Device& device,
   return Runner(script, device, filter).run();
 }
 
-}  // namespace refx
+}  // namespace refx::scene

@@ -2,7 +2,7 @@
 // `# expect@N X Y r g b a [tolerance]` (docs/scene_script_render_targets.md).
 #include <gtest/gtest.h>
 
-#include "pipeline/error_helpers.h"
+#include "scene/scene_helpers.h"
 
 #include <string>
 

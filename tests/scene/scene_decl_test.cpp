@@ -5,7 +5,7 @@
 #include <cstring>
 #include <variant>
 
-#include "pipeline/error_helpers.h"
+#include "scene/scene_helpers.h"
 #include "refx/scene/scene_script.h"
 
 using namespace refx;

@@ -13,6 +13,7 @@
 
 namespace fs = std::filesystem;
 using namespace refx;
+using namespace refx::scene;
 
 namespace {
 

@@ -3,7 +3,7 @@
 // reference/scene-script.md and D3D9's definitions.
 #include <gtest/gtest.h>
 
-#include "pipeline/error_helpers.h"
+#include "scene/scene_helpers.h"
 
 #include <cmath>
 #include <cstring>

@@ -2,7 +2,7 @@
 // `transform WORLDn` (D3DTS_WORLDMATRIX(n)).
 #include <gtest/gtest.h>
 
-#include "pipeline/error_helpers.h"
+#include "scene/scene_helpers.h"
 
 #include <cstring>
 #include <string>

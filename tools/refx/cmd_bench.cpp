@@ -201,9 +201,9 @@ void setupShaderWorkload(Device& dev, const Scene& s, const std::string& workloa
     dev.setSamplerState(st, SAMP_MAGFILTER, 2);
     dev.setSamplerState(st, SAMP_MIPFILTER, 1);  // POINT: GL_LINEAR_MIPMAP_NEAREST
   }
-  samples::bindMesh(dev, s.mesh);
+  scene::bindMesh(dev, s.mesh);
   dev.setVertexShader(dev.createVertexShader(shader::assembleTokens(kRacorXBenchVS, "<bench vs>")));
-  dev.setPixelShader(samples::racorx::loadPixelShader(dev, workload == "racorx6" ? "racorx6_ps11.psh" : "racorx9_ps11.psh"));
+  dev.setPixelShader(scene::racorx::loadPixelShader(dev, workload == "racorx6" ? "racorx6_ps11.psh" : "racorx9_ps11.psh"));
   Matrix mvp = Matrix::identity();
   Vec3 light{0.3f, 0.4f, -1.0f}, eye{0, 0, -2.0f};  // the anchor's quad light and eye, facing -z
   if (s.sphere) {
@@ -218,10 +218,10 @@ void setupShaderWorkload(Device& dev, const Scene& s, const std::string& workloa
     dev.setRenderState(RS_ZENABLE, ZB_TRUE);
     dev.setRenderState(RS_ZFUNC, CMP_LESS);
   }
-  samples::racorx::setMatrix(dev, 0, mvp);
-  samples::racorx::setVector(dev, 4, Vec4(light, 1));
-  samples::racorx::setVector(dev, 5, Vec4(eye, 1));
-  samples::racorx::setVector(dev, 6, Vec4(0.5f, 0.5f, 0.5f, 0.5f));
+  scene::racorx::setMatrix(dev, 0, mvp);
+  scene::racorx::setVector(dev, 4, Vec4(light, 1));
+  scene::racorx::setVector(dev, 5, Vec4(eye, 1));
+  scene::racorx::setVector(dev, 6, Vec4(0.5f, 0.5f, 0.5f, 0.5f));
 }
 
 void setupDevice(Device& dev, const Scene& s, const TexturePtr& tex, int w, int h) {
@@ -232,7 +232,7 @@ void setupDevice(Device& dev, const Scene& s, const TexturePtr& tex, int w, int 
   dev.setTextureStageState(0, TSS_COLOROP, TOP_MODULATE);
   dev.setTextureStageState(0, TSS_COLORARG1, TA_TEXTURE);
   dev.setTextureStageState(0, TSS_COLORARG2, TA_DIFFUSE);
-  samples::bindMesh(dev, s.mesh);
+  scene::bindMesh(dev, s.mesh);
   if (!s.sphere) {
     dev.setRenderState(RS_LIGHTING, 0);
     return;

@@ -374,7 +374,7 @@ void EffectScene::draw(Effect& fx, Device& device) {
   device.setRenderState(d3d::RS_ZENABLE, d3d::ZB_TRUE);
   device.clear(d3d::CLEAR_TARGET | d3d::CLEAR_ZBUFFER, background, 1.0f, 0);
 
-  samples::bindMesh(device, m);
+  scene::bindMesh(device, m);
   const int passes = fx.begin(device, 0);
   for (int i = 0; i < passes; ++i) {
     fx.beginPass(i);

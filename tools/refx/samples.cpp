@@ -184,7 +184,7 @@ SampleResult renderShapes(Device& dev) {
     m.power = 24;
     dev.setMaterial(m);
     dev.setTransform(TS_WORLD, it.world);
-    bindMesh(dev, it.mesh);
+    scene::bindMesh(dev, it.mesh);
     drawMesh(dev, it.mesh);
   }
   r.technique = "fixed-function lighting: directional light, specular (power 24)";
