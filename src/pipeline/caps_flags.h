@@ -5,7 +5,7 @@
 #include <span>
 #include <string_view>
 
-namespace refx::caps_flags {
+namespace refx::pipeline::caps_flags {
 
 struct FlagBit {
   std::string_view name;  // without the D3D prefix
@@ -56,4 +56,4 @@ consteval FlagBit flag(std::span<const FlagBit> table, std::string_view name) {
   throw "unknown caps flag";
 }
 
-}  // namespace refx::caps_flags
+}  // namespace refx::pipeline::caps_flags

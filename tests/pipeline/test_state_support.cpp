@@ -18,6 +18,7 @@
 using namespace refx;
 using namespace refx::test;
 using namespace refx::d3d;
+using namespace refx::pipeline;
 
 namespace {
 
