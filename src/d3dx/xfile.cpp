@@ -23,7 +23,7 @@
 
 namespace refx::d3dx {
 
-namespace xfile {
+namespace detail::xfile {
 
 Header readHeader(std::span<const uint8_t> bytes, const std::string& name) {
   auto failHeader = [&](const std::string& msg) {
@@ -56,7 +56,9 @@ Header readHeader(std::span<const uint8_t> bytes, const std::string& name) {
   return out;
 }
 
-}  // namespace xfile
+}  // namespace detail::xfile
+
+namespace xfile = detail::xfile;
 
 namespace {
 
