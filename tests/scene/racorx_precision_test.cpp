@@ -4,7 +4,7 @@
 // `hardware` precision model the four squarings run on 8-bit fixed point and band;
 // the lookup table does not. In `exact` precision both are smooth.
 //
-// The scenes are the samples' own (tools/refx/racorx_scene.h: the same shader files,
+// The scenes are the samples' own (include/refx/scene/racorx_scene.h: the same shader files,
 // constants and states), on a white color map and a flat normal map so that the only
 // variation left in the highlight is the specular term.
 #include <gtest/gtest.h>
