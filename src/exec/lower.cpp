@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "refx/core/diagnostics.h"
+#include "refx/shader/opcode_table.h"
 
 namespace refx::exec {
 

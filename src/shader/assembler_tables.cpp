@@ -9,101 +9,6 @@
 namespace refx::shader::asmtables {
 namespace {
 
-using K = MnemonicKind;
-using F = FormRule;
-using O = Opcode;
-
-// Every mnemonic of vs_1_1 … ps_3_0 (D3D9 and DirectX 8 spellings).
-const MnemonicInfo kMnemonics[] = {
-    {"nop", O::Nop, 0, K::Plain, O::Nop, F::Any},
-    {"mov", O::Mov, 0, K::Plain, O::Mov, F::Any},
-    {"add", O::Add, 0, K::Plain, O::Add, F::Any},
-    {"sub", O::Sub, 0, K::Plain, O::Sub, F::Any},
-    {"mad", O::Mad, 0, K::Plain, O::Mad, F::Any},
-    {"mul", O::Mul, 0, K::Plain, O::Mul, F::Any},
-    {"rcp", O::Rcp, 0, K::Plain, O::Rcp, F::Any},
-    {"rsq", O::Rsq, 0, K::Plain, O::Rsq, F::Any},
-    {"dp3", O::Dp3, 0, K::Plain, O::Dp3, F::Any},
-    {"dp4", O::Dp4, 0, K::Plain, O::Dp4, F::Any},
-    {"min", O::Min, 0, K::Plain, O::Min, F::Any},
-    {"max", O::Max, 0, K::Plain, O::Max, F::Any},
-    {"slt", O::Slt, 0, K::Plain, O::Slt, F::Any},
-    {"sge", O::Sge, 0, K::Plain, O::Sge, F::Any},
-    {"exp", O::Exp, 0, K::Plain, O::Exp, F::Any},
-    {"log", O::Log, 0, K::Plain, O::Log, F::Any},
-    {"lit", O::Lit, 0, K::Plain, O::Lit, F::Any},
-    {"dst", O::Dst, 0, K::Plain, O::Dst, F::Any},
-    {"lrp", O::Lrp, 0, K::Plain, O::Lrp, F::Any},
-    {"frc", O::Frc, 0, K::Plain, O::Frc, F::Any},
-    {"m4x4", O::M4x4, 0, K::Plain, O::M4x4, F::Any},
-    {"m4x3", O::M4x3, 0, K::Plain, O::M4x3, F::Any},
-    {"m3x4", O::M3x4, 0, K::Plain, O::M3x4, F::Any},
-    {"m3x3", O::M3x3, 0, K::Plain, O::M3x3, F::Any},
-    {"m3x2", O::M3x2, 0, K::Plain, O::M3x2, F::Any},
-    {"call", O::Call, 0, K::Plain, O::Call, F::Any},
-    {"callnz", O::CallNZ, 0, K::Plain, O::CallNZ, F::Any},
-    {"loop", O::Loop, 0, K::Plain, O::Loop, F::Any},
-    {"ret", O::Ret, 0, K::Plain, O::Ret, F::Any},
-    {"endloop", O::EndLoop, 0, K::Plain, O::EndLoop, F::Any},
-    {"label", O::Label, 0, K::Plain, O::Label, F::Any},
-    {"dcl", O::Dcl, 0, K::Dcl, O::Dcl, F::Any},
-    {"pow", O::Pow, 0, K::Plain, O::Pow, F::Any},
-    {"crs", O::Crs, 0, K::Plain, O::Crs, F::Any},
-    {"sgn", O::Sgn, 0, K::Plain, O::Sgn, F::Any},
-    {"abs", O::Abs, 0, K::Plain, O::Abs, F::Any},
-    {"nrm", O::Nrm, 0, K::Plain, O::Nrm, F::Any},
-    {"sincos", O::SinCos, 0, K::Plain, O::SinCos, F::Any},
-    {"rep", O::Rep, 0, K::Plain, O::Rep, F::Any},
-    {"endrep", O::EndRep, 0, K::Plain, O::EndRep, F::Any},
-    {"if", O::If, 0, K::Compare, O::IfC, F::Any},
-    {"ifc", O::IfC, 0, K::Compare, O::IfC, F::Any},
-    {"else", O::Else, 0, K::Plain, O::Else, F::Any},
-    {"endif", O::EndIf, 0, K::Plain, O::EndIf, F::Any},
-    {"break", O::Break, 0, K::Compare, O::BreakC, F::Any},
-    {"breakc", O::BreakC, 0, K::Compare, O::BreakC, F::Any},
-    {"mova", O::MovA, 0, K::Plain, O::MovA, F::Any},
-    {"defb", O::DefB, 0, K::Def, O::DefB, F::Any},
-    {"defi", O::DefI, 0, K::Def, O::DefI, F::Any},
-    {"texcoord", O::TexCoord, 0, K::Plain, O::TexCoord, F::Ps1Tex},
-    {"texcrd", O::TexCoord, 0, K::Plain, O::TexCoord, F::Ps14Only},
-    {"texkill", O::TexKill, 0, K::Plain, O::TexKill, F::Any},
-    {"tex", O::Tex, 0, K::Plain, O::Tex, F::Ps1Tex},
-    {"texld", O::Tex, 0, K::Plain, O::Tex, F::Ps14Up},
-    {"texldp", O::Tex, 1, K::Plain, O::Tex, F::Sm2Up},  // D3DSI_TEXLD_PROJECT
-    {"texldb", O::Tex, 2, K::Plain, O::Tex, F::Sm2Up},  // D3DSI_TEXLD_BIAS
-    {"texbem", O::TexBem, 0, K::Plain, O::TexBem, F::Any},
-    {"texbeml", O::TexBemL, 0, K::Plain, O::TexBemL, F::Any},
-    {"texreg2ar", O::TexReg2AR, 0, K::Plain, O::TexReg2AR, F::Any},
-    {"texreg2gb", O::TexReg2GB, 0, K::Plain, O::TexReg2GB, F::Any},
-    {"texm3x2pad", O::TexM3x2Pad, 0, K::Plain, O::TexM3x2Pad, F::Any},
-    {"texm3x2tex", O::TexM3x2Tex, 0, K::Plain, O::TexM3x2Tex, F::Any},
-    {"texm3x3pad", O::TexM3x3Pad, 0, K::Plain, O::TexM3x3Pad, F::Any},
-    {"texm3x3tex", O::TexM3x3Tex, 0, K::Plain, O::TexM3x3Tex, F::Any},
-    {"texm3x3diff", O::TexM3x3Diff, 0, K::Plain, O::TexM3x3Diff, F::Reserved},
-    {"texm3x3spec", O::TexM3x3Spec, 0, K::Plain, O::TexM3x3Spec, F::Any},
-    {"texm3x3vspec", O::TexM3x3VSpec, 0, K::Plain, O::TexM3x3VSpec, F::Any},
-    {"expp", O::ExpP, 0, K::Plain, O::ExpP, F::Any},
-    {"logp", O::LogP, 0, K::Plain, O::LogP, F::Any},
-    {"cnd", O::Cnd, 0, K::Plain, O::Cnd, F::Any},
-    {"def", O::Def, 0, K::Def, O::Def, F::Any},
-    {"texreg2rgb", O::TexReg2RGB, 0, K::Plain, O::TexReg2RGB, F::Any},
-    {"texdp3tex", O::TexDP3Tex, 0, K::Plain, O::TexDP3Tex, F::Any},
-    {"texm3x2depth", O::TexM3x2Depth, 0, K::Plain, O::TexM3x2Depth, F::Any},
-    {"texdp3", O::TexDP3, 0, K::Plain, O::TexDP3, F::Any},
-    {"texm3x3", O::TexM3x3, 0, K::Plain, O::TexM3x3, F::Any},
-    {"texdepth", O::TexDepth, 0, K::Plain, O::TexDepth, F::Any},
-    {"cmp", O::Cmp, 0, K::Plain, O::Cmp, F::Any},
-    {"bem", O::Bem, 0, K::Plain, O::Bem, F::Any},
-    {"dp2add", O::Dp2Add, 0, K::Plain, O::Dp2Add, F::Any},
-    {"dsx", O::Dsx, 0, K::Plain, O::Dsx, F::Any},
-    {"dsy", O::Dsy, 0, K::Plain, O::Dsy, F::Any},
-    {"texldd", O::TexLdd, 0, K::Plain, O::TexLdd, F::Any},
-    {"setp", O::SetP, 0, K::Compare, O::SetP, F::Any},
-    {"texldl", O::TexLdl, 0, K::Plain, O::TexLdl, F::Any},
-    {"breakp", O::BreakP, 0, K::Plain, O::BreakP, F::Any},
-    {"phase", O::Phase, 0, K::Plain, O::Phase, F::Any},
-};
-
 constexpr uint32_t kMax = 2047;  // 11-bit register number
 const RegisterName kVertexRegisters[] = {
     {"r", RegType::Temp, true, 0, kMax},        {"v", RegType::Input, true, 0, kMax},
@@ -157,17 +62,11 @@ int editDistance(std::string_view a, std::string_view b) {
 
 }  // namespace
 
-const MnemonicInfo* findMnemonic(std::string_view name) {
-  for (const MnemonicInfo& m : kMnemonics)
-    if (name == m.name) return &m;
-  return nullptr;
-}
-
 std::string nearestMnemonic(std::string_view name) {
   if (name.size() > 32) return {};
   int best = 3;
   const char* found = nullptr;
-  for (const MnemonicInfo& m : kMnemonics) {
+  for (const MnemonicInfo& m : allMnemonics()) {
     int d = editDistance(name, m.name);
     if (d < best) best = d, found = m.name;
   }
@@ -175,9 +74,8 @@ std::string nearestMnemonic(std::string_view name) {
 }
 
 std::string opcodeMnemonic(Opcode op) {
-  for (const MnemonicInfo& m : kMnemonics)
-    if (m.opcode == op) return m.name;
-  return "?";
+  const std::string_view name = opcodeName(op);
+  return name.empty() ? "?" : std::string(name);
 }
 
 std::optional<Version> parseVersionName(std::string_view text) {

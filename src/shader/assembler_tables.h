@@ -7,31 +7,16 @@
 #include <string_view>
 
 #include "refx/shader/bytecode.h"
+#include "refx/shader/opcode_table.h"
 
 namespace refx::shader::asmtables {
 
-enum class MnemonicKind : uint8_t { Plain, Compare, Def, Dcl };
+// Mnemonics come from the opcode table.
+using shader::FormRule;
+using shader::MnemonicKind;
+using MnemonicInfo = shader::Mnemonic;
+using shader::findMnemonic;
 
-// Version gates of the mnemonics whose spelling depends on the version.
-enum class FormRule : uint8_t {
-  Any,
-  Ps1Tex,    // tex, texcoord: ps_1_0–ps_1_3
-  Ps14Up,    // texld: ps_1_4 and later
-  Ps14Only,  // texcrd
-  Sm2Up,     // texldp, texldb
-  Reserved,  // texm3x3diff
-};
-
-struct MnemonicInfo {
-  const char* name;
-  Opcode opcode;
-  uint8_t control;        // specific-control bits 23:16
-  MnemonicKind kind;
-  Opcode compareOpcode;   // Compare kind: the opcode when a comparison suffix is present
-  FormRule form;
-};
-
-const MnemonicInfo* findMnemonic(std::string_view lowerName);
 // The closest known mnemonic within edit distance 2, or "".
 std::string nearestMnemonic(std::string_view lowerName);
 // The canonical mnemonic of an opcode ("mov", "texld" …).

@@ -1,10 +1,11 @@
-// The D3D9 shader token format (bytecode.md): the opcode table, encode() and a
+// The D3D9 shader token format (bytecode.md): encode() and a
 // bounds-checked decode() that names the offending token for any malformed input.
 #include "refx/shader/bytecode.h"
 
 #include <cstring>
 
 #include "refx/core/diagnostics.h"
+#include "refx/shader/opcode_table.h"
 
 namespace refx::shader {
 
@@ -18,103 +19,10 @@ constexpr uint32_t kEndToken = 0x0000FFFFu;
 constexpr uint32_t kPhaseToken = 0x0000FFFDu;
 constexpr int kLastRegType = int(RegType::Predicate);
 
-// srcCount -1: the count depends on the version (see operandCounts).
-constexpr OpcodeInfo kOpcodes[] = {
-    {Opcode::Nop, "nop", false, 0},
-    {Opcode::Mov, "mov", true, 1},
-    {Opcode::Add, "add", true, 2},
-    {Opcode::Sub, "sub", true, 2},
-    {Opcode::Mad, "mad", true, 3},
-    {Opcode::Mul, "mul", true, 2},
-    {Opcode::Rcp, "rcp", true, 1},
-    {Opcode::Rsq, "rsq", true, 1},
-    {Opcode::Dp3, "dp3", true, 2},
-    {Opcode::Dp4, "dp4", true, 2},
-    {Opcode::Min, "min", true, 2},
-    {Opcode::Max, "max", true, 2},
-    {Opcode::Slt, "slt", true, 2},
-    {Opcode::Sge, "sge", true, 2},
-    {Opcode::Exp, "exp", true, 1},
-    {Opcode::Log, "log", true, 1},
-    {Opcode::Lit, "lit", true, 1},
-    {Opcode::Dst, "dst", true, 2},
-    {Opcode::Lrp, "lrp", true, 3},
-    {Opcode::Frc, "frc", true, 1},
-    {Opcode::M4x4, "m4x4", true, 2},
-    {Opcode::M4x3, "m4x3", true, 2},
-    {Opcode::M3x4, "m3x4", true, 2},
-    {Opcode::M3x3, "m3x3", true, 2},
-    {Opcode::M3x2, "m3x2", true, 2},
-    {Opcode::Call, "call", false, 1},
-    {Opcode::CallNZ, "callnz", false, 2},
-    {Opcode::Loop, "loop", false, 2},
-    {Opcode::Ret, "ret", false, 0},
-    {Opcode::EndLoop, "endloop", false, 0},
-    {Opcode::Label, "label", false, 1},
-    {Opcode::Dcl, "dcl", true, 0},  // + the usage token before the destination
-    {Opcode::Pow, "pow", true, 2},
-    {Opcode::Crs, "crs", true, 2},
-    {Opcode::Sgn, "sgn", true, -1},
-    {Opcode::Abs, "abs", true, 1},
-    {Opcode::Nrm, "nrm", true, 1},
-    {Opcode::SinCos, "sincos", true, -1},
-    {Opcode::Rep, "rep", false, 1},
-    {Opcode::EndRep, "endrep", false, 0},
-    {Opcode::If, "if", false, 1},
-    {Opcode::IfC, "ifc", false, 2},
-    {Opcode::Else, "else", false, 0},
-    {Opcode::EndIf, "endif", false, 0},
-    {Opcode::Break, "break", false, 0},
-    {Opcode::BreakC, "breakc", false, 2},
-    {Opcode::MovA, "mova", true, 1},
-    {Opcode::DefB, "defb", true, 0},  // + 1 literal
-    {Opcode::DefI, "defi", true, 0},  // + 4 literals
-    {Opcode::TexCoord, "texcoord", true, -1},
-    {Opcode::TexKill, "texkill", true, 0},  // the operand is a destination token
-    {Opcode::Tex, "texld", true, -1},
-    {Opcode::TexBem, "texbem", true, 1},
-    {Opcode::TexBemL, "texbeml", true, 1},
-    {Opcode::TexReg2AR, "texreg2ar", true, 1},
-    {Opcode::TexReg2GB, "texreg2gb", true, 1},
-    {Opcode::TexM3x2Pad, "texm3x2pad", true, 1},
-    {Opcode::TexM3x2Tex, "texm3x2tex", true, 1},
-    {Opcode::TexM3x3Pad, "texm3x3pad", true, 1},
-    {Opcode::TexM3x3Tex, "texm3x3tex", true, 1},
-    // 75 texm3x3diff is reserved: never valid, so not in the table.
-    {Opcode::TexM3x3Spec, "texm3x3spec", true, 2},
-    {Opcode::TexM3x3VSpec, "texm3x3vspec", true, 1},
-    {Opcode::ExpP, "expp", true, 1},
-    {Opcode::LogP, "logp", true, 1},
-    {Opcode::Cnd, "cnd", true, 3},
-    {Opcode::Def, "def", true, 0},  // + 4 literals
-    {Opcode::TexReg2RGB, "texreg2rgb", true, 1},
-    {Opcode::TexDP3Tex, "texdp3tex", true, 1},
-    {Opcode::TexM3x2Depth, "texm3x2depth", true, 1},
-    {Opcode::TexDP3, "texdp3", true, 1},
-    {Opcode::TexM3x3, "texm3x3", true, 1},
-    {Opcode::TexDepth, "texdepth", true, 0},
-    {Opcode::Cmp, "cmp", true, 3},
-    {Opcode::Bem, "bem", true, 2},
-    {Opcode::Dp2Add, "dp2add", true, 3},
-    {Opcode::Dsx, "dsx", true, 1},
-    {Opcode::Dsy, "dsy", true, 1},
-    {Opcode::TexLdd, "texldd", true, 4},
-    {Opcode::SetP, "setp", true, 2},
-    {Opcode::TexLdl, "texldl", true, 2},
-    {Opcode::BreakP, "breakp", false, 1},
-    {Opcode::Phase, "phase", false, 0},
-    {Opcode::Comment, "comment", false, 0},
-    {Opcode::End, "end", false, 0},
-};
-
 // Number of literal DWORDs after the destination of def/defi/defb.
 int literalCount(Opcode op) {
-  switch (op) {
-    case Opcode::Def:
-    case Opcode::DefI: return 4;
-    case Opcode::DefB: return 1;
-    default: return 0;
-  }
+  const OpcodeInfo* info = findOpcode(op);
+  return info ? info->literals : 0;
 }
 
 bool validVersion(Version v) {
@@ -422,29 +330,6 @@ std::string Version::name() const {
   else if (major == 2 && minor == 1) s += 'x';
   else s += std::to_string(minor);
   return s;
-}
-
-const OpcodeInfo* findOpcode(Opcode op) {
-  // Opcodes are dense within 0..48 and 64..96; the table is short, search it.
-  for (const OpcodeInfo& info : kOpcodes)
-    if (info.opcode == op) return &info;
-  return nullptr;
-}
-
-OperandCounts operandCounts(Opcode op, Version version) {
-  switch (op) {
-    case Opcode::TexCoord:  // texcoord t# (1_1-1_3) / texcrd r#, t# (1_4)
-      return {true, version.atLeast(1, 4) ? 1 : 0};
-    case Opcode::Tex:  // tex t# / texld r#, t# (1_4) / texld r#, src, s# (2_0+)
-      return {true, version.sm2plus() ? 2 : version.atLeast(1, 4) ? 1 : 0};
-    case Opcode::SinCos:
-    case Opcode::Sgn:  // SM2 needs two scratch temporaries as extra sources
-      return {true, version.major >= 3 ? 1 : 3};
-    default: break;
-  }
-  const OpcodeInfo* info = findOpcode(op);
-  if (!info) return {false, 0};
-  return {info->hasDst, info->srcCount < 0 ? 0 : info->srcCount};
 }
 
 Shader decode(std::span<const uint32_t> tokens) { return Decoder(tokens).run(); }

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "refx/shader/constant_table.h"
+#include "refx/shader/opcode_table.h"
 #include "refx/shader/validator.h"
 
 
@@ -137,20 +138,13 @@ std::string dclMnemonic(const Instruction& ins, Version version) {
 }
 
 std::string mnemonic(const Instruction& ins, Version version) {
-  switch (ins.opcode) {
-    case Opcode::Tex:
-      if (!version.atLeast(1, 4)) return "tex";
-      if (!version.sm2plus()) return "texld";
-      return (ins.control & 1) ? "texldp" : (ins.control & 2) ? "texldb" : "texld";
-    case Opcode::TexCoord: return version.ps1x() && version.minor == 4 ? "texcrd" : "texcoord";
-    case Opcode::IfC: return std::string("if") + kComparisonSuffix[ins.control & 7];
-    case Opcode::BreakC: return std::string("break") + kComparisonSuffix[ins.control & 7];
-    case Opcode::SetP: return std::string("setp") + kComparisonSuffix[ins.control & 7];
-    case Opcode::Dcl: return dclMnemonic(ins, version);
-    default: break;
-  }
-  const OpcodeInfo* info = findOpcode(ins.opcode);
-  return info ? info->name : fmt::format("opcode{}", unsigned(ins.opcode));
+  if (ins.opcode == Opcode::Dcl) return dclMnemonic(ins, version);
+  if (!findOpcode(ins.opcode)) return fmt::format("opcode{}", unsigned(ins.opcode));
+  // ifc/breakc/setp: the first spelling that takes a comparison suffix (if_gt, break_lt, setp_eq).
+  for (const Mnemonic& m : allMnemonics())
+    if (m.kind == MnemonicKind::Compare && m.compareOpcode == ins.opcode)
+      return m.name + std::string(kComparisonSuffix[ins.control & 7]);
+  return std::string(mnemonicIn(ins.opcode, ins.control, version));
 }
 
 std::string instructionText(const Instruction& ins, Version version) {

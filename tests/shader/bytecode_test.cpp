@@ -10,6 +10,7 @@
 
 #include "refx/core/diagnostics.h"
 #include "refx/shader/bytecode.h"
+#include "refx/shader/opcode_table.h"
 
 using namespace refx::shader;
 

@@ -138,20 +138,7 @@ struct Shader {
   std::vector<Instruction> instructions;  // includes Comment and Phase, excludes End
 };
 
-// Static description of one opcode (the table both encoder and decoder use).
-struct OpcodeInfo {
-  Opcode opcode;
-  const char* name;  // asm mnemonic for the SM2+ form ("texld", "texcoord" …)
-  bool hasDst;
-  int8_t srcCount;   // sources for the common form; per-version forms via operandCounts()
-};
-const OpcodeInfo* findOpcode(Opcode op);  // nullptr for unknown values
-struct OperandCounts {
-  bool dst;
-  int src;
-};
-// Operand counts of `op` in `version` (tex/texcoord/sincos/sgn change with the version).
-OperandCounts operandCounts(Opcode op, Version version);
+// Opcode names, operand forms and properties: opcode_table.h.
 
 // Tokens → Shader. Throws refx::Error naming the token offset and what was expected
 // for truncated or malformed input (unknown opcode, bad register type, length
