@@ -16,7 +16,7 @@
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/caps.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 namespace {
 
@@ -31,7 +31,7 @@ bool small(const refx::scene::TextureDef& t) {
   return uint64_t(t.width) * uint64_t(t.height) * uint64_t(t.depth) * faces <= kMaxTexels;
 }
 
-void run(refx::SceneScript& script) {
+void run(refx::scene::SceneScript& script) {
   using namespace refx;
   static const CapsProfile caps = loadCapsProfile("ref");
   script.width = std::min(script.width, kMaxTargetSide);
@@ -54,8 +54,8 @@ void run(refx::SceneScript& script) {
     return true;
   };
   try {
-    const SceneOutput output = runSceneScript(script, device, allowed);
-    (void)checkSceneExpectations(script, output);
+    const scene::SceneOutput output = scene::runSceneScript(script, device, allowed);
+    (void)scene::checkSceneExpectations(script, output);
   } catch (const Error&) {
   }
 }
@@ -64,9 +64,9 @@ void run(refx::SceneScript& script) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string_view text(reinterpret_cast<const char*>(data), size);
-  refx::SceneScript script;
+  refx::scene::SceneScript script;
   try {
-    script = refx::parseSceneScript(text, "fuzz.scene");
+    script = refx::scene::parseSceneScript(text, "fuzz.scene");
   } catch (const refx::Error&) {
     return 0;
   }

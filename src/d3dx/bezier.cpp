@@ -77,7 +77,7 @@ Mesh createBezierPatch(const Vec3 cp[16], uint32_t tessellation) {
     if (!std::isfinite(cp[k].x) || !std::isfinite(cp[k].y) || !std::isfinite(cp[k].z))
       fail("createBezierPatch: control point {} is not finite", k);
   const uint32_t t = tessellation, row = t + 1;
-  Mesh mesh(fvf::XYZ | fvf::NORMAL | fvf::tex(1), row * row, 2 * t * t);
+  Mesh mesh(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1), row * row, 2 * t * t);
   for (uint32_t i = 0; i <= t; ++i)
     for (uint32_t j = 0; j <= t; ++j) {
       float u = float(j) / float(t), v = float(i) / float(t);

@@ -7,58 +7,8 @@
 
 namespace refx::d3dx {
 
-namespace {
-
-// Bytes of the position part (with blend weights) per D3DFVF_POSITION_MASK value.
-int positionBytes(uint32_t fvf) {
-  uint32_t pos = fvf & fvf::POSITION_MASK;
-  switch (pos) {
-    case 0: return 0;
-    case fvf::XYZRHW:
-    case fvf::XYZW: return 16;
-    case 0x002: return 12;  // XYZ
-    case 0x006: case 0x008: case 0x00a: case 0x00c: case 0x00e:
-      return 12 + 4 * (int(pos - 0x006) / 2 + 1);  // XYZB1 ... XYZB5: x y z and 1-5 betas
-    default: fail("FVF 0x{:x}: position bits 0x{:x} are not a D3DFVF position type", fvf, pos);
-  }
-}
-
-}  // namespace
-
-FVFLayout FVFLayout::of(uint32_t code) {
-  FVFLayout l;
-  int n = fvf::texCount(code);
-  if (n > 8) fail("FVF 0x{:x}: {} texture coordinate sets, D3D allows at most 8", code, n);
-  int off = positionBytes(code);
-  if (off) l.position = 0;
-  const uint32_t pos = code & fvf::POSITION_MASK;
-  if (pos >= fvf::XYZB1 && pos <= fvf::XYZB5) {
-    const int betas = int(pos - fvf::XYZB1) / 2 + 1;
-    const bool indices = pos == fvf::XYZB5 || (code & (fvf::LASTBETA_UBYTE4 | fvf::LASTBETA_D3DCOLOR));
-    l.blendWeightCount = betas - (indices ? 1 : 0);
-    if (l.blendWeightCount > 0) l.blendWeights = 12;
-    if (indices) l.blendIndices = 12 + 4 * l.blendWeightCount;
-  }
-  auto take = [&](uint32_t bit, int& field, int bytes) {
-    if (code & bit) field = off, off += bytes;
-  };
-  take(fvf::NORMAL, l.normal, 12);
-  take(fvf::PSIZE, l.psize, 4);
-  take(fvf::DIFFUSE, l.diffuse, 4);
-  take(fvf::SPECULAR, l.specular, 4);
-  for (int i = 0; i < n; ++i) {
-    l.texDims[i] = fvf::texCoordDims(code, i);
-    l.texCoord[i] = off;
-    off += 4 * l.texDims[i];
-  }
-  l.stride = uint32_t(off);
-  return l;
-}
-
-uint32_t fvf::stride(uint32_t code) { return FVFLayout::of(code).stride; }
-
 Mesh::Mesh(uint32_t fvf_, uint32_t vertexCount, uint32_t faceCount)
-    : fvf(fvf_), stride(fvf::stride(fvf_)) {
+    : fvf(fvf_), stride(fvfStride(fvf_)) {
   vertices.assign(size_t(vertexCount) * stride, 0);
   indices.assign(size_t(faceCount) * 3, 0);
 }

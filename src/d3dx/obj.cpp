@@ -313,7 +313,7 @@ class ObjReader : Reader {
   }
 
   Mesh finish() {
-    uint32_t code = fvf::XYZ | (anyNormal_ ? fvf::NORMAL : 0) | (anyTex_ ? fvf::tex(1) : 0);
+    uint32_t code = d3d::FVF_XYZ | (anyNormal_ ? d3d::FVF_NORMAL : 0) | (anyTex_ ? d3d::fvfTex(1) : 0);
     Mesh m(code, uint32_t(vertices_.size()), 0);
     for (uint32_t i = 0; i < vertices_.size(); ++i) {
       const CornerKey& k = vertices_[i];

@@ -12,7 +12,7 @@ namespace refx::d3dx {
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
-constexpr uint32_t kPosNormal = fvf::XYZ | fvf::NORMAL;
+constexpr uint32_t kPosNormal = d3d::FVF_XYZ | d3d::FVF_NORMAL;
 
 // sin/cos of start + i*step, i < n (D3DX builds the same tables).
 struct SinCos {
@@ -106,7 +106,7 @@ Mesh createTexturedSphere(float radius, uint32_t slices, uint32_t stacks) {
   requireAtLeast("createTexturedSphere", "stacks", stacks, 2);
   requireVertexCount("createTexturedSphere", uint64_t(slices + 1) * (stacks + 1));
   const uint32_t cols = slices + 1;
-  Mesh mesh(fvf::XYZ | fvf::NORMAL | fvf::tex(2) | fvf::texCoordSize(3, 1), cols * (stacks + 1),
+  Mesh mesh(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2) | d3d::fvfTexCoordSize(3, 1), cols * (stacks + 1),
             2 * slices * (stacks - 1));
   for (uint32_t s = 0; s <= stacks; ++s) {
     float v = float(s) / float(stacks);

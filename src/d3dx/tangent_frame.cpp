@@ -160,27 +160,27 @@ void checkSet(const char* fn, const char* what, int set, bool allowNone) {
 
 // The FVF with the normal and the 3-float output sets the computation needs.
 uint32_t frameFvf(const char* fn, uint32_t fvfCode, int texIn, int tOut, int bOut, bool addNormal) {
-  int count = fvf::texCount(fvfCode);
+  int count = d3d::fvfTexCount(fvfCode);
   if (texIn >= count)
     fail("{}: the mesh (FVF 0x{:x}) has {} texture coordinate sets, no set {} to read (u, v) from",
          fn, fvfCode, count, texIn);
-  if (fvf::texCoordDims(fvfCode, texIn) < 2)
+  if (d3d::fvfTexCoordDims(fvfCode, texIn) < 2)
     fail("{}: texture coordinate set {} has 1 float; (u, v) needs 2", fn, texIn);
   uint32_t out = fvfCode;
-  if (addNormal) out |= fvf::NORMAL;
+  if (addNormal) out |= d3d::FVF_NORMAL;
   int newCount = std::max({count, tOut + 1, bOut + 1});
   for (int s = count; s < 8; ++s) out &= ~(3u << (16 + 2 * s));  // unused size bits
   for (int s : {tOut, bOut}) {
     if (s < 0) continue;
     if (s < count) {
-      if (fvf::texCoordDims(fvfCode, s) < 3)
+      if (d3d::fvfTexCoordDims(fvfCode, s) < 3)
         fail("{}: texture coordinate set {} has {} floats; the output needs 3", fn, s,
-             fvf::texCoordDims(fvfCode, s));
+             d3d::fvfTexCoordDims(fvfCode, s));
     } else {
-      out |= fvf::texCoordSize(3, s);
+      out |= d3d::fvfTexCoordSize(3, s);
     }
   }
-  return (out & ~fvf::TEXCOUNT_MASK) | fvf::tex(newCount);
+  return (out & ~d3d::FVF_TEXCOUNT_MASK) | d3d::fvfTex(newCount);
 }
 
 std::vector<uint32_t> tangentFrame(const char* fn, Mesh& mesh, int texIn, int tOut, int bOut,

@@ -168,7 +168,7 @@ Mesh createTeapot(uint32_t tessellation) {
   if (tessellation > 256) fail("createTeapot: tessellation {} exceeds the limit of 256", tessellation);
   const uint32_t perPatch = (tessellation + 1) * (tessellation + 1);
   const uint32_t facesPerPatch = 2 * tessellation * tessellation;
-  Mesh teapot(fvf::XYZ | fvf::NORMAL | fvf::tex(1), kTeapotPatchCount * perPatch,
+  Mesh teapot(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1), kTeapotPatchCount * perPatch,
               kTeapotPatchCount * facesPerPatch);
   for (int p = 0; p < kTeapotPatchCount; ++p) {
     Vec3 cp[16];

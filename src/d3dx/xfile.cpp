@@ -20,10 +20,11 @@
 #include "refx/core/diagnostics.h"
 #include "refx/core/text.h"
 #include "refx/d3dx/xfile.h"
+#include "refx/resource/vertex_format.h"
 
 namespace refx::d3dx {
 
-namespace xfile {
+namespace detail::xfile {
 
 Header readHeader(std::span<const uint8_t> bytes, const std::string& name) {
   auto failHeader = [&](const std::string& msg) {
@@ -56,7 +57,9 @@ Header readHeader(std::span<const uint8_t> bytes, const std::string& name) {
   return out;
 }
 
-}  // namespace xfile
+}  // namespace detail::xfile
+
+namespace xfile = detail::xfile;
 
 namespace {
 
@@ -68,10 +71,6 @@ constexpr int kMaxFrameDepth = 64;
 constexpr size_t kMaxTextureName = 1024;
 constexpr int kMaxTexSets = 8;
 
-// D3DDECLTYPE sizes in DWORDs (FLOAT1 … FLOAT16_4) and the D3DDECLUSAGE values used.
-constexpr uint32_t kDeclTypeDwords[] = {1, 2, 3, 4, 1, 1, 1, 2, 1, 1, 2, 1, 2, 1, 1, 1, 2};
-constexpr uint32_t DECLTYPE_FLOAT4 = 3, DECLTYPE_D3DCOLOR = 4, DECLTYPE_FLOAT3 = 2;
-constexpr uint32_t DECLUSAGE_NORMAL = 3, DECLUSAGE_TEXCOORD = 5, DECLUSAGE_COLOR = 10;
 
 // One Mesh data object as the file describes it.
 struct Part {
@@ -571,9 +570,9 @@ class Parser {
       readDWORD({"the method of vertex element {}", i});
       elements[i].usage = readDWORD({"the usage of vertex element {}", i});
       elements[i].index = readDWORD({"the usage index of vertex element {}", i});
-      if (elements[i].type >= std::size(kDeclTypeDwords))
+      if (elements[i].type > d3d::DECLTYPE_FLOAT16_4)
         error(at, fmt::format("vertex element {} has the unknown D3DDECLTYPE {}", i, elements[i].type));
-      dwordsPerVertex += kDeclTypeDwords[elements[i].type];
+      dwordsPerVertex += declTypeSize(uint8_t(elements[i].type)) / 4;
     }
     Token at = cur_;
     uint32_t nd = readCount({"the DWORD count of the vertex data"}, 1);
@@ -593,13 +592,13 @@ class Parser {
     };
     uint32_t off = 0;
     for (const Element& e : elements) {
-      if (e.usage == DECLUSAGE_TEXCOORD && e.type <= DECLTYPE_FLOAT4 && e.index < kMaxTexSets) {
+      if (e.usage == d3d::DECLUSAGE_TEXCOORD && e.type <= d3d::DECLTYPE_FLOAT4 && e.index < kMaxTexSets) {
         int dims = int(e.type) + 1;
         p.texDims[e.index] = dims;
         p.tex[e.index].assign(nv, Vec4());
         for (uint32_t v = 0; v < nv; ++v)
           for (int c = 0; c < dims; ++c) p.tex[e.index][v][c] = floatAt(v * dwordsPerVertex + off + c, v);
-      } else if (e.usage == DECLUSAGE_NORMAL && e.type == DECLTYPE_FLOAT3 && !p.hasNormals) {
+      } else if (e.usage == d3d::DECLUSAGE_NORMAL && e.type == d3d::DECLTYPE_FLOAT3 && !p.hasNormals) {
         p.normals.resize(nv);
         for (uint32_t v = 0; v < nv; ++v) {
           size_t b = v * dwordsPerVertex + off;
@@ -607,12 +606,12 @@ class Parser {
         }
         p.normalIndices = p.polyIndices;
         p.hasNormals = true;
-      } else if (e.usage == DECLUSAGE_COLOR && e.type == DECLTYPE_D3DCOLOR && e.index == 0) {
+      } else if (e.usage == d3d::DECLUSAGE_COLOR && e.type == d3d::DECLTYPE_D3DCOLOR && e.index == 0) {
         p.colors.resize(nv);
         for (uint32_t v = 0; v < nv; ++v) p.colors[v] = data[v * dwordsPerVertex + off];
         p.hasColors = true;
       }
-      off += kDeclTypeDwords[e.type];
+      off += declTypeSize(uint8_t(e.type)) / 4;
     }
   }
 };
@@ -684,8 +683,8 @@ Mesh merge(const std::vector<Part>& parts, const std::string& name) {
         sets = std::max(sets, s + 1);
       }
   }
-  uint32_t code = fvf::XYZ | (normals ? fvf::NORMAL : 0) | (colors ? fvf::DIFFUSE : 0) | fvf::tex(sets);
-  for (int s = 0; s < sets; ++s) code |= fvf::texCoordSize(dims[s] ? dims[s] : 2, s);
+  uint32_t code = d3d::FVF_XYZ | (normals ? d3d::FVF_NORMAL : 0) | (colors ? d3d::FVF_DIFFUSE : 0) | d3d::fvfTex(sets);
+  for (int s = 0; s < sets; ++s) code |= d3d::fvfTexCoordSize(dims[s] ? dims[s] : 2, s);
 
   std::vector<Built> built;
   uint64_t vertexCount = 0, indexCount = 0;

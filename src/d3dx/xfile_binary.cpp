@@ -17,7 +17,7 @@
 #include "d3dx/xfile_internal.h"
 #include "refx/core/diagnostics.h"
 
-namespace refx::d3dx::xfile {
+namespace refx::d3dx::detail::xfile {
 
 namespace {
 
@@ -163,4 +163,4 @@ std::unique_ptr<Lexer> makeBinaryLexer(std::span<const uint8_t> bytes, const std
   return std::make_unique<BinaryLexer>(bytes, name, floatBits);
 }
 
-}  // namespace refx::d3dx::xfile
+}  // namespace refx::d3dx::detail::xfile

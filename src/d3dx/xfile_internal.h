@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-namespace refx::d3dx::xfile {
+namespace refx::d3dx::detail::xfile {
 
 // Tokens of the .x grammar. Binary INTEGER_LIST / FLOAT_LIST records arrive as one
 // Integer / Float token per element; template member keywords (DWORD, array, '[', …)
@@ -53,4 +53,4 @@ std::unique_ptr<Lexer> makeBinaryLexer(std::span<const uint8_t> bytes, const std
 
 inline constexpr size_t kHeaderSize = 16;
 
-}  // namespace refx::d3dx::xfile
+}  // namespace refx::d3dx::detail::xfile

@@ -10,7 +10,7 @@
 #include "d3dx/xfile_internal.h"
 #include "refx/core/diagnostics.h"
 
-namespace refx::d3dx::xfile {
+namespace refx::d3dx::detail::xfile {
 
 namespace {
 
@@ -180,4 +180,4 @@ std::unique_ptr<Lexer> makeTextLexer(std::span<const uint8_t> bytes, const std::
   return std::make_unique<TextLexer>(bytes, name);
 }
 
-}  // namespace refx::d3dx::xfile
+}  // namespace refx::d3dx::detail::xfile

@@ -11,12 +11,11 @@
 
 #include "refx/core/diagnostics.h"
 #include "refx/d3dx/xfile.h"
+#include "refx/resource/vertex_format.h"
 
 namespace refx::d3dx {
 
 namespace {
-
-constexpr uint32_t DECLTYPE_FLOAT1 = 0, DECLUSAGE_TEXCOORD = 5;
 
 // "a;b;c;" members of one element; elements separated by ",\n", the list ended by ";".
 template <typename Element>
@@ -99,7 +98,7 @@ std::string xFileText(const Mesh& mesh) {
     out += " }\n";
   }
 
-  int sets = fvf::texCount(mesh.fvf);
+  int sets = d3d::fvfTexCount(mesh.fvf);
   bool set0Standard = sets > 0 && l.texDims[0] == 2;
   if (set0Standard) {
     fmt::format_to(std::back_inserter(out), " MeshTextureCoords {{\n  {};\n", nv);
@@ -139,8 +138,8 @@ std::string xFileText(const Mesh& mesh) {
     fmt::format_to(std::back_inserter(out), " DeclData {{\n  {};\n", sets - first);
     list(out, "  ", uint32_t(sets - first), [&](uint32_t e) {
       int s = first + int(e);
-      fmt::format_to(std::back_inserter(out), "{};0;{};{};", DECLTYPE_FLOAT1 + l.texDims[s] - 1,
-                     DECLUSAGE_TEXCOORD, s);
+      fmt::format_to(std::back_inserter(out), "{};0;{};{};", d3d::DECLTYPE_FLOAT1 + l.texDims[s] - 1,
+                     uint32_t(d3d::DECLUSAGE_TEXCOORD), s);
     });
     fmt::format_to(std::back_inserter(out), "  {};\n", uint64_t(perVertex) * nv);
     list(out, "  ", nv, [&](uint32_t i) {

@@ -23,6 +23,8 @@ namespace refx {
 
 namespace {
 
+namespace caps_flags = pipeline::caps_flags;
+
 // ---------------------------------------------------------------------------
 // Flag sets: D3D flag names (without prefix) and their bits.
 

@@ -5,7 +5,7 @@
 #include <span>
 #include <string_view>
 
-namespace refx::caps_flags {
+namespace refx::pipeline::caps_flags {
 
 struct FlagBit {
   std::string_view name;  // without the D3D prefix
@@ -84,4 +84,4 @@ constexpr uint32_t bitOf(std::span<const FlagBit> table, std::string_view name) 
   return 0;
 }
 
-}  // namespace refx::caps_flags
+}  // namespace refx::pipeline::caps_flags

@@ -16,6 +16,7 @@
 #include "refx/core/diagnostics.h"
 #include "refx/resource/sampler.h"
 #include "render_targets.h"
+#include "shader_lowering.h"
 #include "validate.h"
 #include "vertex_fetch.h"
 
@@ -269,12 +270,12 @@ shader::ValidationCaps Device::shaderValidationCaps() const {
   return refx::shaderValidationCaps(caps_);
 }
 
-exec::ShaderLoweringOptions Device::shaderLoweringOptions(shader::Version version) const {
+exec::ShaderLoweringOptions pipeline::shaderLoweringOptions(const Device& device, shader::Version version) {
   exec::ShaderLoweringOptions o;
-  o.precision = options_.precision == Precision::Hardware ? exec::Precision::Hardware : exec::Precision::Exact;
+  o.precision = device.options().precision == Precision::Hardware ? exec::Precision::Hardware : exec::Precision::Exact;
   // PixelShader1xMaxValue of the profile; a profile without pixel shaders gets the
   // version's minimum (1 for ps_1_1-1_3, 8 for ps_1_4).
-  const float maxValue = caps_.pixelShader1xMaxValue;
+  const float maxValue = device.caps().pixelShader1xMaxValue;
   o.pixelShader1xMaxValue = maxValue > 0 ? maxValue : version.atLeast(1, 4) ? 8.0f : 1.0f;
   // Vertex colors reach the pixel stage within [0,1] (clamped per vertex below ps_3_0).
   o.colorInputsInRange = true;
@@ -282,7 +283,7 @@ exec::ShaderLoweringOptions Device::shaderLoweringOptions(shader::Version versio
   // D3DTTFF_PROJECTED (the fixed-function vertex stage leaves that divisor in .w).
   if (version.ps1x() && !version.atLeast(1, 4))
     for (int m = 0; m < 4; ++m)
-      if (state_.tss(m, TSS_TEXTURETRANSFORMFLAGS) & TTFF_PROJECTED)
+      if (device.state().tss(m, TSS_TEXTURETRANSFORMFLAGS) & TTFF_PROJECTED)
         o.projectedTextureStages |= uint8_t(1u << m);
   return o;
 }
@@ -781,7 +782,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   exec::Program ffVertex;
   std::vector<FetchElement> fetch;
   if (vs) {
-    vlow = vs->lowered({});  // the options only concern pixel shaders
+    vlow = loweredShader(*vs, {});  // the options only concern pixel shaders
     fetch = shaderFetch(decl, *vlow);
     vcfg.hasPSize = writesOutput(vlow->program, kVertexOutPSize);
   } else {
@@ -866,7 +867,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   std::shared_ptr<const exec::LoweredShader> plow;
   exec::Program pprog;
   if (ps) {
-    plow = ps->lowered(shaderLoweringOptions(ps->version()));
+    plow = loweredShader(*ps, shaderLoweringOptions(*this, ps->version()));
     pprog = plow->program;
     if (!ps->version().atLeast(3, 0)) appendSpecularAndFog(pprog, st, false);
   } else {
@@ -961,7 +962,6 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.blend.dstA = separate ? st.rs(RS_DESTBLENDALPHA) : d.blend.dst;
   d.blend.opA = separate ? st.rs(RS_BLENDOPALPHA) : d.blend.op;
   d.blend.factor = colorFromD3D(st.rs(RS_BLENDFACTOR));
-  std::vector<uint64_t> shadedCounter(1, 0);
   d.pixelsShaded = &stats_.pixelsShaded;
   std::atomic<uint32_t> pixelBoundStops{0};
   d.execContext.boundStops = &pixelBoundStops;

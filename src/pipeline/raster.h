@@ -22,14 +22,6 @@ struct ShadedVertex {
   Vec4 out[kVaryingCount];  // out[0] = clip position (or screen position when pretransformed)
 };
 
-// Screen-space vertex ready for setup.
-struct ScreenVertex {
-  float x, y, z;  // viewport coordinates, z in [0,1]
-  float invW;     // 1/w_clip (perspective), 1 for orthographic/pretransformed rhw
-  const ShadedVertex* v;
-  Vec4 varying[kVaryingCount];  // copy for clipped vertices (index 0 unused)
-};
-
 // One input component of the pixel program and where it comes from.
 struct InterpolatedInput {
   uint8_t input;      // pixel input register
@@ -95,7 +87,6 @@ struct RasterDraw {
   bool dither = false;     // D3DRS_DITHERENABLE: ordered dithering into 8-bit targets
   bool alphaTest = false;
   uint32_t alphaFunc = 8;
-  float alphaRef = 0;
   bool depthTest = false, depthWrite = false;
   uint32_t depthFunc = 4;
   bool stencil = false;

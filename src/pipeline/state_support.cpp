@@ -6,7 +6,7 @@
 #include "refx/pipeline/d3d9types.h"
 #include "refx/pipeline/state.h"
 
-namespace refx {
+namespace refx::pipeline {
 
 using namespace d3d;
 
@@ -275,4 +275,4 @@ void requireImplementedState(StateClass stateClass, uint32_t state, uint32_t val
        valueText(stateClass, state, value));
 }
 
-}  // namespace refx
+}  // namespace refx::pipeline

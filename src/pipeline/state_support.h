@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-namespace refx {
+namespace refx::pipeline {
 
 enum class StateClass { Render, TextureStage, Sampler };
 
@@ -35,4 +35,4 @@ std::string stateDisplayName(StateClass stateClass, uint32_t state);
 // that is no D3D9 state.
 void requireImplementedState(StateClass stateClass, uint32_t state, uint32_t value);
 
-}  // namespace refx
+}  // namespace refx::pipeline

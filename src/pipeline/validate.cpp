@@ -24,8 +24,11 @@
 namespace refx {
 
 using namespace d3d;
+using pipeline::RenderTargetBinding;
 
 namespace {
+
+namespace caps_flags = pipeline::caps_flags;
 
 // A caps bit with its flag name, for the reasons (the names and bits of caps_flags.h).
 using CapBit = caps_flags::FlagBit;
@@ -641,8 +644,8 @@ ValidationResult validateDeviceState(const DeviceState& state, const CapsProfile
   return validateDeviceState(state, caps, RenderTargetBinding{});
 }
 
-ValidationResult validateDeviceState(const DeviceState& state, const CapsProfile& caps,
-                                     const RenderTargetBinding& targets) {
+ValidationResult pipeline::validateDeviceState(const DeviceState& state, const CapsProfile& caps,
+                                               const RenderTargetBinding& targets) {
   ValidationResult result;
   if (auto reason = Validator(state, caps, targets).run()) {
     result.ok = false;

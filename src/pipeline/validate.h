@@ -3,7 +3,7 @@
 #pragma once
 #include "refx/pipeline/caps.h"
 
-namespace refx {
+namespace refx::pipeline {
 
 struct RenderTargetBinding {
   int count = 1;               // render targets 0..count-1 bound
@@ -13,4 +13,4 @@ struct RenderTargetBinding {
 ValidationResult validateDeviceState(const DeviceState& state, const CapsProfile& caps,
                                      const RenderTargetBinding& targets);
 
-}  // namespace refx
+}  // namespace refx::pipeline

@@ -6,7 +6,7 @@
 
 #include "resource/image_io_internal.h"
 
-namespace refx::image {
+namespace refx::resource::image {
 
 namespace {
 
@@ -147,4 +147,4 @@ TexturePtr loadBMP(std::span<const uint8_t> bytes, const std::string& name) {
   return tex;
 }
 
-}  // namespace refx::image
+}  // namespace refx::resource::image

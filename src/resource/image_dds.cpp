@@ -5,7 +5,7 @@
 
 #include "resource/image_io_internal.h"
 
-namespace refx::image {
+namespace refx::resource::image {
 
 namespace {
 
@@ -239,4 +239,4 @@ std::vector<uint8_t> encodeDDS(const Texture& tex, const std::string& name) {
   return out;
 }
 
-}  // namespace refx::image
+}  // namespace refx::resource::image

@@ -12,7 +12,7 @@
 
 namespace refx {
 
-namespace image {
+namespace resource::image {
 
 void Reader::need(size_t n, const std::string& what) const {
   if (n > remaining())
@@ -229,7 +229,9 @@ TexturePtr loadPNM(std::span<const uint8_t> bytes, const std::string& name) {
   return readPNMPixels(r, w, h, kind == '5' ? 1 : 3, int(maxval));
 }
 
-}  // namespace image
+}  // namespace resource::image
+
+namespace image = resource::image;
 
 TexturePtr loadTextureFromMemory(std::span<const uint8_t> bytes, const std::string& name) {
   using namespace image;

@@ -8,7 +8,7 @@
 #include "refx/core/diagnostics.h"
 #include "refx/resource/texture.h"
 
-namespace refx::image {
+namespace refx::resource::image {
 
 // Largest width/height of a 2D image file (the texture limit).
 constexpr int kMaxImageDimension = 16384;
@@ -72,4 +72,4 @@ std::vector<uint8_t> encodePNG(const Texture& tex, bool alpha, int face, int lev
                                const std::string& name);
 std::vector<uint8_t> encodeDDS(const Texture& tex, const std::string& name);
 
-}  // namespace refx::image
+}  // namespace refx::resource::image

@@ -10,7 +10,7 @@
 
 #include "resource/image_io_internal.h"
 
-namespace refx::image {
+namespace refx::resource::image {
 
 namespace {
 
@@ -184,4 +184,4 @@ std::vector<uint8_t> encodePNG(const Texture& tex, bool alpha, int face, int lev
   return std::vector<uint8_t>(ctx.out, ctx.out + ctx.outSize);
 }
 
-}  // namespace refx::image
+}  // namespace refx::resource::image

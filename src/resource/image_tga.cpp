@@ -4,7 +4,7 @@
 
 #include "resource/image_io_internal.h"
 
-namespace refx::image {
+namespace refx::resource::image {
 
 namespace {
 
@@ -145,4 +145,4 @@ TexturePtr loadTGA(std::span<const uint8_t> bytes, const std::string& name) {
   return tex;
 }
 
-}  // namespace refx::image
+}  // namespace refx::resource::image

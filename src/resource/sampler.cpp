@@ -35,6 +35,9 @@
 #include "resource/sampler_internal.h"
 
 namespace refx {
+
+using resource::srgbToLinear;
+
 namespace {
 
 constexpr int kLanes = kBatchLanes;
@@ -1317,7 +1320,7 @@ void sampleImpl(const Texture& tex, const SamplerState& st, const SampleRequest&
 
 }  // namespace
 
-float srgbToLinear(float c) {
+float resource::srgbToLinear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
@@ -1409,7 +1412,7 @@ void PreparedSampler::sampleImplicit(const float* u, const float* v, const float
   sampleImpl(*tex_, state_, req, out, true);
 }
 
-void sampleTextureReference(const Texture& tex, const SamplerState& state,
+void resource::sampleTextureReference(const Texture& tex, const SamplerState& state,
                             const SampleRequest& req, float out[4][kBatchLanes]) {
   sampleImpl(tex, state, req, out, false);
 }

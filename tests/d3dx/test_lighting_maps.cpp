@@ -45,7 +45,7 @@ struct Soup {
     tri(a, c, d);
   }
   Mesh mesh() const {
-    Mesh m(fvf::XYZ | fvf::NORMAL, uint32_t(p.size()), uint32_t(p.size() / 3));
+    Mesh m(d3d::FVF_XYZ | d3d::FVF_NORMAL, uint32_t(p.size()), uint32_t(p.size() / 3));
     for (uint32_t i = 0; i < p.size(); ++i) {
       uint32_t f = i / 3 * 3;
       m.setPosition(i, p[i]);
@@ -292,7 +292,7 @@ TEST(HemisphereVisibility, MeshWithoutNormalsUsesFaceNormals) {
   s.quad({-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});
   s.quad({-1, 1, -1}, {1, 1, -1}, {1, 1, 1}, {-1, 1, 1});  // ceiling, facing down
   Mesh withNormals = s.mesh();
-  Mesh m(fvf::XYZ, withNormals.vertexCount(), withNormals.faceCount());
+  Mesh m(d3d::FVF_XYZ, withNormals.vertexCount(), withNormals.faceCount());
   for (uint32_t i = 0; i < m.vertexCount(); ++i) m.setPosition(i, withNormals.position(i));
   m.indices = withNormals.indices;
   std::vector<float> a = computeHemisphereVisibility(m), b = computeHemisphereVisibility(withNormals);

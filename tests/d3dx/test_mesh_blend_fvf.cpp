@@ -11,42 +11,42 @@ using namespace refx::d3dx;
 
 TEST(MeshBlendFVF, LayoutOfBetas) {
   // XYZB1: 12 + 4 bytes, one weight.
-  FVFLayout a = FVFLayout::of(fvf::XYZB1 | fvf::NORMAL);
+  FVFLayout a = FVFLayout::of(d3d::FVF_XYZB1 | d3d::FVF_NORMAL);
   EXPECT_EQ(a.blendWeights, 12);
   EXPECT_EQ(a.blendWeightCount, 1);
   EXPECT_EQ(a.blendIndices, -1);
   EXPECT_EQ(a.normal, 16);
   EXPECT_EQ(a.stride, 28u);
   // XYZB3 | LASTBETA_UBYTE4: two weights, then the indices DWORD at 12 + 8.
-  FVFLayout b = FVFLayout::of(fvf::XYZB3 | fvf::LASTBETA_UBYTE4 | fvf::DIFFUSE);
+  FVFLayout b = FVFLayout::of(d3d::FVF_XYZB3 | d3d::FVF_LASTBETA_UBYTE4 | d3d::FVF_DIFFUSE);
   EXPECT_EQ(b.blendWeightCount, 2);
   EXPECT_EQ(b.blendIndices, 20);
   EXPECT_EQ(b.diffuse, 24);
   EXPECT_EQ(b.stride, 28u);
   // XYZB5: four weights and the indices; 12 + 20 bytes.
-  FVFLayout c = FVFLayout::of(fvf::XYZB5);
+  FVFLayout c = FVFLayout::of(d3d::FVF_XYZB5);
   EXPECT_EQ(c.blendWeightCount, 4);
   EXPECT_EQ(c.blendIndices, 28);
   EXPECT_EQ(c.stride, 32u);
   // XYZB1 | LASTBETA_D3DCOLOR: the only beta is the indices.
-  FVFLayout d = FVFLayout::of(fvf::XYZB1 | fvf::LASTBETA_D3DCOLOR);
+  FVFLayout d = FVFLayout::of(d3d::FVF_XYZB1 | d3d::FVF_LASTBETA_D3DCOLOR);
   EXPECT_EQ(d.blendWeightCount, 0);
   EXPECT_EQ(d.blendWeights, -1);
   EXPECT_EQ(d.blendIndices, 12);
-  EXPECT_EQ(fvf::stride(fvf::XYZB1 | fvf::LASTBETA_D3DCOLOR), 16u);
+  EXPECT_EQ(fvfStride(d3d::FVF_XYZB1 | d3d::FVF_LASTBETA_D3DCOLOR), 16u);
 }
 
 TEST(MeshBlendFVF, CloneCarriesWeightsAndIndices) {
   // XYZB3 | LASTBETA_UBYTE4 (weights 0.25, 0.5; indices 0x00c80701) cloned to
   // XYZB2 | LASTBETA_UBYTE4 keeps the first weight and the indices; to XYZB4 |
   // LASTBETA_UBYTE4 keeps both weights, the third reads 0.
-  Mesh m(fvf::XYZB3 | fvf::LASTBETA_UBYTE4, 1, 0);
+  Mesh m(d3d::FVF_XYZB3 | d3d::FVF_LASTBETA_UBYTE4, 1, 0);
   const float v[5] = {1, 2, 3, 0.25f, 0.5f};
   const uint32_t indices = 0x00c80701;
   std::memcpy(m.vertices.data(), v, sizeof v);
   std::memcpy(m.vertices.data() + 20, &indices, 4);
 
-  Mesh fewer = cloneMeshFVF(m, fvf::XYZB2 | fvf::LASTBETA_UBYTE4);
+  Mesh fewer = cloneMeshFVF(m, d3d::FVF_XYZB2 | d3d::FVF_LASTBETA_UBYTE4);
   ASSERT_EQ(fewer.stride, 20u);
   float f[4];
   uint32_t i;
@@ -56,7 +56,7 @@ TEST(MeshBlendFVF, CloneCarriesWeightsAndIndices) {
   EXPECT_EQ(f[3], 0.25f);
   EXPECT_EQ(i, indices);
 
-  Mesh more = cloneMeshFVF(m, fvf::XYZB4 | fvf::LASTBETA_UBYTE4);
+  Mesh more = cloneMeshFVF(m, d3d::FVF_XYZB4 | d3d::FVF_LASTBETA_UBYTE4);
   ASSERT_EQ(more.stride, 28u);
   float g[6];
   std::memcpy(g, more.vertices.data(), 24);

@@ -101,7 +101,7 @@ void expectMutual(const Mesh& m, const std::vector<uint32_t>& adj) {
 }  // namespace
 
 TEST(Adjacency, TwoTrianglesSharingAnEdge) {
-  Mesh m = quad(fvf::XYZ);
+  Mesh m = quad(d3d::FVF_XYZ);
   // Face 0 (0,1,2): edge 1 runs 1->2; face 1 (1,3,2): edge 2 runs 2->1, the same
   // points the other way. The other four edges are on the border.
   std::vector<uint32_t> expected = {X, 1, X, X, X, 0};
@@ -110,14 +110,14 @@ TEST(Adjacency, TwoTrianglesSharingAnEdge) {
 
 TEST(Adjacency, EdgesInTheSameDirectionAreNotNeighbours) {
   // Face 1 (1,2,3) runs 1->2 like face 0 (0,1,2): inconsistent winding.
-  Mesh m = makeMesh(fvf::XYZ, {{0, 1, 0}, {1, 1, 0}, {0, 0, 0}, {1, 0, 0}}, {0, 1, 2, 1, 2, 3});
+  Mesh m = makeMesh(d3d::FVF_XYZ, {{0, 1, 0}, {1, 1, 0}, {0, 0, 0}, {1, 0, 0}}, {0, 1, 2, 1, 2, 3});
   std::vector<uint32_t> expected(6, X);
   EXPECT_EQ(generateAdjacency(m, 0.0f), expected);
 }
 
 TEST(Adjacency, SplitVerticesMatchWithinEpsilon) {
   // Second triangle has its own copies of the shared edge's points, 1e-4 away.
-  Mesh m = makeMesh(fvf::XYZ,
+  Mesh m = makeMesh(d3d::FVF_XYZ,
                     {{0, 1, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1.0001f, 0}, {1, 0, 0}, {0.0001f, 0, 0}},
                     {0, 1, 2, 3, 4, 5});
   // Face 1 edge 2 runs 5->3 = (0,0)->(1,1), face 0 edge 1 runs (1,1)->(0,0).
@@ -128,7 +128,7 @@ TEST(Adjacency, SplitVerticesMatchWithinEpsilon) {
 
 TEST(Adjacency, ClosedBoxHasANeighbourOnEveryEdge) {
   for (bool shared : {true, false}) {
-    Mesh m = cube(fvf::XYZ, shared);
+    Mesh m = cube(d3d::FVF_XYZ, shared);
     std::vector<uint32_t> adj = generateAdjacency(m, 0.0f);
     ASSERT_EQ(adj.size(), 36u);
     for (uint32_t a : adj) EXPECT_NE(a, X);
@@ -143,18 +143,18 @@ TEST(Adjacency, ClosedBoxHasANeighbourOnEveryEdge) {
 }
 
 TEST(Adjacency, ErrorsAreReported) {
-  Mesh m = quad(fvf::XYZ);
+  Mesh m = quad(d3d::FVF_XYZ);
   EXPECT_THROW(generateAdjacency(m, -1.0f), Error);
   EXPECT_THROW(generateAdjacency(m, NAN), Error);
   m.indices[4] = 9;
   EXPECT_THROW(generateAdjacency(m, 0.0f), Error);
-  Mesh ok = quad(fvf::XYZ);
+  Mesh ok = quad(d3d::FVF_XYZ);
   EXPECT_THROW(convertAdjacencyToPointReps(ok, std::vector<uint32_t>{X, X, X}), Error);
   EXPECT_THROW(convertAdjacencyToPointReps(ok, std::vector<uint32_t>{X, 7, X, X, X, 0}), Error);
 }
 
 TEST(Adjacency, NonFinitePositionsMatchNothing) {
-  Mesh m = makeMesh(fvf::XYZ, {{0, 1, 0}, {1, 1, 0}, {NAN, 0, 0}, {1, 0, 0}}, {0, 1, 2, 1, 3, 2});
+  Mesh m = makeMesh(d3d::FVF_XYZ, {{0, 1, 0}, {1, 1, 0}, {NAN, 0, 0}, {1, 0, 0}}, {0, 1, 2, 1, 3, 2});
   std::vector<uint32_t> adj = generateAdjacency(m, 0.01f);
   // Shared index 2 still pairs the diagonal: points are per index first.
   EXPECT_EQ(adj, (std::vector<uint32_t>{X, 1, X, X, X, 0}));
@@ -162,7 +162,7 @@ TEST(Adjacency, NonFinitePositionsMatchNothing) {
 
 TEST(PointReps, ReplicasAcrossAnEdgeShareTheLowestIndex) {
   // v3 = v1 and v5 = v2 as copies; face 1 (3,4,5) edge 2 runs 5->3 against face 0's 1->2.
-  Mesh m = makeMesh(fvf::XYZ, {{0, 1, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 0, 0}},
+  Mesh m = makeMesh(d3d::FVF_XYZ, {{0, 1, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 0, 0}},
                     {0, 1, 2, 3, 4, 5});
   std::vector<uint32_t> adj = generateAdjacency(m, 0.0f);
   EXPECT_EQ(adj, (std::vector<uint32_t>{X, 1, X, X, X, 0}));
@@ -173,7 +173,7 @@ TEST(PointReps, ReplicasAcrossAnEdgeShareTheLowestIndex) {
 }
 
 TEST(Weld, BoxWithSplitCornersBecomesEightVertices) {
-  Mesh m = cube(fvf::XYZ, false);
+  Mesh m = cube(d3d::FVF_XYZ, false);
   ASSERT_EQ(m.vertexCount(), 24u);
   Mesh before = m;
   std::vector<uint32_t> remap = weldVertices(m, 0.0f);
@@ -201,7 +201,7 @@ TEST(Weld, DifferentNormalsStayApartUnlessWeldAll) {
 
 TEST(Weld, OtherElementsCompareWithinEpsilon) {
   // Two triangles sharing an edge through copies whose texture coordinates differ by 1e-4.
-  Mesh m(fvf::XYZ | fvf::tex(1), 6, 2);
+  Mesh m(d3d::FVF_XYZ | d3d::fvfTex(1), 6, 2);
   Vec3 p[6] = {{0, 1, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 0, 0}};
   for (uint32_t i = 0; i < 6; ++i) m.setPosition(i, p[i]), m.setTexCoord(i, 0, p[i].x, 1 - p[i].y);
   m.setTexCoord(3, 0, 1.0001f, 0.0f);
@@ -225,7 +225,7 @@ TEST(ComputeNormals, QuadNormalFacesTheViewer) {
   // Face 0: e1 = (1,1,0)-(0,1,0) = (1,0,0), e2 = (0,0,0)-(0,1,0) = (0,-1,0);
   // cross(e1, e2) = (0*0 - 0*(-1), 0*0 - 1*0, 1*(-1) - 0*0) = (0,0,-1): toward the
   // viewer at -z. Face 1 is in the same plane, same winding.
-  Mesh m = quad(fvf::XYZ | fvf::NORMAL);
+  Mesh m = quad(d3d::FVF_XYZ | d3d::FVF_NORMAL);
   computeNormals(m);
   for (uint32_t i = 0; i < 4; ++i) expectVec(m.normal(i), {0, 0, -1});
   computeNormals(m, {}, TANGENT_WIND_CW);
@@ -233,7 +233,7 @@ TEST(ComputeNormals, QuadNormalFacesTheViewer) {
 }
 
 TEST(ComputeNormals, SharedCubeCorner) {
-  Mesh m = cube(fvf::XYZ | fvf::NORMAL, true);
+  Mesh m = cube(d3d::FVF_XYZ | d3d::FVF_NORMAL, true);
   ASSERT_EQ(m.vertexCount(), 8u);
   uint32_t v = vertexAt(m, {1, 1, 1});
   // Angle weights: each of the three faces meets the corner with a right angle in
@@ -254,7 +254,7 @@ TEST(ComputeNormals, SharedCubeCorner) {
 }
 
 TEST(ComputeNormals, SplitCubeSmoothsOnlyThroughAdjacency) {
-  Mesh m = cube(fvf::XYZ | fvf::NORMAL, false);
+  Mesh m = cube(d3d::FVF_XYZ | d3d::FVF_NORMAL, false);
   // Without adjacency each vertex sums only its own face: the flat face normal.
   computeNormals(m);
   for (uint32_t f = 0; f < 6; ++f)
@@ -285,16 +285,16 @@ TEST(ComputeNormals, ReproducesTheShapesOutwardNormals) {
 }
 
 TEST(ComputeNormals, NeedsANormalElementAndSurvivesDegenerateFaces) {
-  Mesh noNormal = quad(fvf::XYZ);
+  Mesh noNormal = quad(d3d::FVF_XYZ);
   EXPECT_THROW(computeNormals(noNormal), Error);
   // Collinear positions have no direction: zero, never NaN. An unused vertex keeps
   // its normal.
-  Mesh m = makeMesh(fvf::XYZ | fvf::NORMAL, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {5, 5, 5}}, {0, 1, 2});
+  Mesh m = makeMesh(d3d::FVF_XYZ | d3d::FVF_NORMAL, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {5, 5, 5}}, {0, 1, 2});
   m.setNormal(3, {0, 1, 0});
   computeNormals(m);
   for (uint32_t i = 0; i < 3; ++i) expectVec(m.normal(i), {0, 0, 0});
   expectVec(m.normal(3), {0, 1, 0});
-  Mesh q = quad(fvf::XYZ | fvf::NORMAL);
+  Mesh q = quad(d3d::FVF_XYZ | d3d::FVF_NORMAL);
   EXPECT_THROW(computeNormals(q, std::vector<uint32_t>{X, X}), Error);
 }
 

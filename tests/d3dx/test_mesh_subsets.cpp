@@ -12,7 +12,7 @@ using namespace refx::d3dx;
 namespace {
 
 Mesh fourFaces() {
-  Mesh m(fvf::XYZ, 8, 4);
+  Mesh m(d3d::FVF_XYZ, 8, 4);
   // Face f uses vertices 2f, 2f+1, (2f+2) mod 8.
   for (uint32_t f = 0; f < 4; ++f) {
     m.indices[3 * f] = 2 * f;

@@ -7,7 +7,7 @@
 
 #include "refx/core/diagnostics.h"
 #include "refx/d3dx/mesh.h"
-#include "refx/pipeline/state.h"
+#include "refx/resource/vertex_format.h"
 
 using namespace refx;
 using namespace refx::d3dx;
@@ -69,26 +69,26 @@ void expectIndicesInRange(const Mesh& m) {
 
 TEST(MeshLayout, FVFStrides) {
   // XYZ 12 + NORMAL 12 = 24 bytes (the D3DX shape layout).
-  EXPECT_EQ(fvf::stride(fvf::XYZ | fvf::NORMAL), 24u);
+  EXPECT_EQ(fvfStride(d3d::FVF_XYZ | d3d::FVF_NORMAL), 24u);
   // XYZ 12 + NORMAL 12 + float2 8 + float3 12 = 44.
-  uint32_t tex = fvf::XYZ | fvf::NORMAL | fvf::tex(2) | fvf::texCoordSize(3, 1);
-  EXPECT_EQ(fvf::stride(tex), 44u);
+  uint32_t tex = d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2) | d3d::fvfTexCoordSize(3, 1);
+  EXPECT_EQ(fvfStride(tex), 44u);
   // XYZ 12 + DIFFUSE 4 + float2 8 = 24; texcoord 0 at 16.
-  FVFLayout l = FVFLayout::of(fvf::XYZ | fvf::DIFFUSE | fvf::tex(1));
+  FVFLayout l = FVFLayout::of(d3d::FVF_XYZ | d3d::FVF_DIFFUSE | d3d::fvfTex(1));
   EXPECT_EQ(l.stride, 24u);
   EXPECT_EQ(l.diffuse, 12);
   EXPECT_EQ(l.texCoord[0], 16);
   EXPECT_EQ(l.normal, -1);
   // D3DFVF_TEXCOORDSIZE3(1) = 1 << 18, TEXCOORDSIZE1(0) = 3 << 16.
-  EXPECT_EQ(fvf::texCoordSize(3, 1), 0x40000u);
-  EXPECT_EQ(fvf::texCoordSize(1, 0), 0x30000u);
-  EXPECT_THROW(fvf::stride(fvf::XYZ | fvf::tex(9)), Error);
+  EXPECT_EQ(d3d::fvfTexCoordSize(3, 1), 0x40000u);
+  EXPECT_EQ(d3d::fvfTexCoordSize(1, 0), 0x30000u);
+  EXPECT_THROW(fvfStride(d3d::FVF_XYZ | d3d::fvfTex(9)), Error);
 }
 
 TEST(MeshLayout, SameLayoutAsTheDeviceDeclaration) {
-  for (uint32_t code : {fvf::XYZ | fvf::NORMAL, fvf::XYZ | fvf::DIFFUSE | fvf::tex(1),
-                        fvf::XYZ | fvf::NORMAL | fvf::tex(2) | fvf::texCoordSize(3, 1),
-                        fvf::XYZRHW | fvf::DIFFUSE | fvf::SPECULAR | fvf::tex(1)}) {
+  for (uint32_t code : {d3d::FVF_XYZ | d3d::FVF_NORMAL, d3d::FVF_XYZ | d3d::FVF_DIFFUSE | d3d::fvfTex(1),
+                        d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2) | d3d::fvfTexCoordSize(3, 1),
+                        d3d::FVF_XYZRHW | d3d::FVF_DIFFUSE | d3d::FVF_SPECULAR | d3d::fvfTex(1)}) {
     FVFLayout l = FVFLayout::of(code);
     VertexDeclaration d = VertexDeclaration::fromFVF(code);
     EXPECT_EQ(d.streamStride(0), l.stride) << std::hex << code;
@@ -96,7 +96,7 @@ TEST(MeshLayout, SameLayoutAsTheDeviceDeclaration) {
       ASSERT_NE(d.find(d3d::DECLUSAGE_NORMAL, 0), nullptr);
       EXPECT_EQ(d.find(d3d::DECLUSAGE_NORMAL, 0)->offset, l.normal);
     }
-    for (int s = 0; s < fvf::texCount(code); ++s) {
+    for (int s = 0; s < d3d::fvfTexCount(code); ++s) {
       ASSERT_NE(d.find(d3d::DECLUSAGE_TEXCOORD, uint8_t(s)), nullptr);
       EXPECT_EQ(d.find(d3d::DECLUSAGE_TEXCOORD, uint8_t(s))->offset, l.texCoord[s]);
     }
@@ -104,7 +104,7 @@ TEST(MeshLayout, SameLayoutAsTheDeviceDeclaration) {
 }
 
 TEST(MeshLayout, ElementAccessAndClone) {
-  Mesh m(fvf::XYZ | fvf::DIFFUSE | fvf::tex(1), 3, 1);
+  Mesh m(d3d::FVF_XYZ | d3d::FVF_DIFFUSE | d3d::fvfTex(1), 3, 1);
   EXPECT_EQ(m.vertexCount(), 3u);
   EXPECT_EQ(m.faceCount(), 1u);
   m.setPosition(2, {1, 2, 3});
@@ -117,7 +117,7 @@ TEST(MeshLayout, ElementAccessAndClone) {
   EXPECT_THROW(m.position(3), Error);    // vertex 3 of 3
   EXPECT_THROW(m.texCoord(0, 1), Error);  // one set only
 
-  Mesh c = cloneMeshFVF(m, fvf::XYZ | fvf::NORMAL | fvf::tex(1));
+  Mesh c = cloneMeshFVF(m, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
   EXPECT_EQ(c.stride, 32u);  // 12 + 12 + 8
   expectVec(c.position(2), 1, 2, 3, 0);
   expectVec(c.normal(2), 0, 0, 0, 0);
@@ -128,7 +128,7 @@ TEST(MeshLayout, ElementAccessAndClone) {
 TEST(Shapes, SphereLayout) {
   // slices 4, stacks 2: 2 + 4*(2-1) = 6 vertices, 2*4*(2-1) = 8 faces.
   Mesh m = createSphere(1.0f, 4, 2);
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL);
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL);
   EXPECT_EQ(m.stride, 24u);
   ASSERT_EQ(m.vertexCount(), 6u);
   EXPECT_EQ(m.faceCount(), 8u);
@@ -165,7 +165,7 @@ TEST(Shapes, TexturedSphere) {
   const float r = 1.5f;
   const uint32_t slices = 16, stacks = 8;
   Mesh m = createTexturedSphere(r, slices, stacks);
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL | fvf::tex(2) | fvf::texCoordSize(3, 1));
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2) | d3d::fvfTexCoordSize(3, 1));
   EXPECT_EQ(m.stride, 44u);
   // (16+1) * (8+1) = 153 vertices; 2*16*(8-1) = 224 faces (one per quad at the poles).
   EXPECT_EQ(m.vertexCount(), 153u);
@@ -210,7 +210,7 @@ TEST(Shapes, Box) {
   Mesh m = createBox(2, 4, 6);
   ASSERT_EQ(m.vertexCount(), 24u);
   EXPECT_EQ(m.faceCount(), 12u);
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL);
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL);
   // D3DX order: the -x face first, its first corner (-w/2, -h/2, -d/2).
   expectVec(m.position(0), -1, -2, -3);
   expectVec(m.normal(0), -1, 0, 0);

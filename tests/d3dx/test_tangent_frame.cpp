@@ -74,7 +74,7 @@ TEST(TangentFrame, UnitQuad) {
   // normal = cross(e1, e2) = (0,0,-1). Face 1: e1 = (0,-1,0), e2 = (-1,-1,0),
   // (s1,t1) = (0,1), (s2,t2) = (-1,1), det = 0*1 - (-1)*1 = 1:
   // dP/du = (0,-1,0) - (-1,-1,0) = (1,0,0); dP/dv = (-1,-1,0)*0 - (0,-1,0)*(-1) = (0,-1,0).
-  Mesh m = texturedQuad(fvf::XYZ | fvf::tex(1));
+  Mesh m = texturedQuad(d3d::FVF_XYZ | d3d::fvfTex(1));
   TangentFrameOptions o;
   o.flags = TANGENT_CALCULATE_NORMALS;
   o.tangentOut = 1;
@@ -82,8 +82,8 @@ TEST(TangentFrame, UnitQuad) {
   std::vector<uint32_t> mapping = computeTangentFrame(m, o);
   EXPECT_EQ(mapping, (std::vector<uint32_t>{0, 1, 2, 3}));
   // Normal and the two float3 sets were added.
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL | fvf::tex(3) | fvf::texCoordSize(3, 1) |
-                       fvf::texCoordSize(3, 2));
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(3) | d3d::fvfTexCoordSize(3, 1) |
+                       d3d::fvfTexCoordSize(3, 2));
   for (uint32_t i = 0; i < 4; ++i) {
     expectVec(m.normal(i), {0, 0, -1});
     expectVec(xyz(m.texCoord(i, 1)), {1, 0, 0});
@@ -94,7 +94,7 @@ TEST(TangentFrame, UnitQuad) {
   // Each orthogonalization mode agrees on an orthonormal mapping.
   for (uint32_t flags : {TANGENT_ORTHOGONALIZE_FROM_U, TANGENT_ORTHOGONALIZE_FROM_V,
                          TANGENT_DONT_ORTHOGONALIZE}) {
-    Mesh q = texturedQuad(fvf::XYZ | fvf::NORMAL | fvf::tex(1));
+    Mesh q = texturedQuad(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
     for (uint32_t i = 0; i < 4; ++i) q.setNormal(i, {0, 0, -1});
     o.flags = flags;
     computeTangentFrame(q, o);
@@ -106,7 +106,7 @@ TEST(TangentFrame, UnitQuad) {
 }
 
 TEST(TangentFrame, FourFloatTangentSetReceivesHandedness) {
-  Mesh m = texturedQuad(fvf::XYZ | fvf::NORMAL | fvf::tex(2) | fvf::texCoordSize(4, 1));
+  Mesh m = texturedQuad(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2) | d3d::fvfTexCoordSize(4, 1));
   TangentFrameOptions o;
   o.flags = TANGENT_CALCULATE_NORMALS;
   computeTangentFrame(m, o);
@@ -139,7 +139,7 @@ TEST(TangentFrame, CubeFacesHaveTheirOwnFrames) {
     verts.push_back({f.n + f.r + f.d, 1, 1});
     idx.insert(idx.end(), {b, b + 1, b + 2, b + 1, b + 3, b + 2});
   }
-  Mesh m = makeMesh(fvf::XYZ | fvf::NORMAL | fvf::tex(1), verts, idx);
+  Mesh m = makeMesh(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1), verts, idx);
   TangentFrameOptions o;
   o.flags = TANGENT_CALCULATE_NORMALS;
   o.binormalOut = 2;
@@ -207,7 +207,7 @@ TEST(TangentFrame, WrapTakesTheShortWayAcrossTheSeam) {
   // Unwrapped: det = -0.8, dP/du = (1,0,0) / -0.8 -> t = (-1,0,0);
   // wrapped:   det = 0.2,  dP/du = (1,0,0) / 0.2  -> t = (1,0,0).
   std::vector<V> verts = {{{0, 1, 0}, 0.9f, 0}, {{1, 1, 0}, 0.1f, 0}, {{0, 0, 0}, 0.9f, 1}, {{1, 0, 0}, 0.1f, 1}};
-  Mesh plain = makeMesh(fvf::XYZ | fvf::NORMAL | fvf::tex(2) | fvf::texCoordSize(3, 1), verts, {0, 1, 2, 1, 3, 2});
+  Mesh plain = makeMesh(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2) | d3d::fvfTexCoordSize(3, 1), verts, {0, 1, 2, 1, 3, 2});
   for (uint32_t i = 0; i < 4; ++i) plain.setNormal(i, {0, 0, -1});
   Mesh wrapped = plain;
   computeTangent(plain, 0, 1, -1, false);
@@ -232,7 +232,7 @@ TEST(TangentFrame, MirroredHalvesAreSplitNotAveraged) {
                           {{0, 0, 0}, 0, 1}, {{1, 0, 0}, 1, 1}, {{2, 0, 0}, 0, 1}};
   std::vector<uint32_t> idx = {0, 1, 3, 1, 4, 3,   // left quad
                                1, 2, 4, 2, 5, 4};  // right quad
-  uint32_t f = fvf::XYZ | fvf::NORMAL | fvf::tex(3) | fvf::texCoordSize(4, 1) | fvf::texCoordSize(3, 2);
+  uint32_t f = d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(3) | d3d::fvfTexCoordSize(4, 1) | d3d::fvfTexCoordSize(3, 2);
   Mesh m = makeMesh(f, verts, idx);
   TangentFrameOptions o;
   o.flags = TANGENT_CALCULATE_NORMALS | TANGENT_WEIGHT_EQUAL;
@@ -274,7 +274,7 @@ TEST(TangentFrame, MirroredTriangleInAQuad) {
   // dP/du = ((0,-1,0) - (-1,-1,0)) / -1 = (-1,0,0). TR and BL are shared by both
   // faces with 45 degrees each (equal: the positive side keeps them): they are split.
   // ORTHOGONALIZE_FROM_U keeps dP/du as it is.
-  Mesh m = makeMesh(fvf::XYZ | fvf::tex(1),
+  Mesh m = makeMesh(d3d::FVF_XYZ | d3d::fvfTex(1),
                     {{{0, 1, 0}, 0, 0}, {{1, 1, 0}, 1, 0}, {{0, 0, 0}, 0, 1}, {{1, 0, 0}, -1, 1}},
                     {0, 1, 2, 1, 3, 2});
   TangentFrameOptions o;
@@ -295,7 +295,7 @@ TEST(TangentFrame, DegenerateBasesAreFixed) {
   // Zero area in texture space (every vertex at uv (0.5, 0.5)): no partials. The
   // tangent is the axis least aligned with n = (0,0,-1) (x, the first of x and y),
   // b = cross(n, t) = cross((0,0,-1), (1,0,0)) = (0,-1,0).
-  Mesh flat = makeMesh(fvf::XYZ | fvf::tex(1),
+  Mesh flat = makeMesh(d3d::FVF_XYZ | d3d::fvfTex(1),
                        {{{0, 1, 0}, 0.5f, 0.5f}, {{1, 1, 0}, 0.5f, 0.5f}, {{0, 0, 0}, 0.5f, 0.5f},
                         {{1, 0, 0}, 0.5f, 0.5f}},
                        {0, 1, 2, 1, 3, 2});
@@ -307,13 +307,13 @@ TEST(TangentFrame, DegenerateBasesAreFixed) {
     expectVec(xyz(flat.texCoord(i, 2)), {0, -1, 0});
   }
   // Collinear positions: no normal, no partials. Still a unit orthonormal frame.
-  Mesh line = makeMesh(fvf::XYZ | fvf::tex(1), {{{0, 0, 0}, 0, 0}, {{1, 0, 0}, 1, 0}, {{2, 0, 0}, 0, 1}},
+  Mesh line = makeMesh(d3d::FVF_XYZ | d3d::fvfTex(1), {{{0, 0, 0}, 0, 0}, {{1, 0, 0}, 1, 0}, {{2, 0, 0}, 0, 1}},
                        {0, 1, 2});
   computeTangentFrame(line, o);
   expectOrthonormal(line, 1, 2);
   // Repeated vertex and non-finite data next to a good face: finite everywhere,
   // the good face unharmed.
-  Mesh mixed = makeMesh(fvf::XYZ | fvf::tex(1),
+  Mesh mixed = makeMesh(d3d::FVF_XYZ | d3d::fvfTex(1),
                         {{{0, 1, 0}, 0, 0}, {{1, 1, 0}, 1, 0}, {{0, 0, 0}, 0, 1}, {{NAN, 0, 0}, 1, 1},
                          {{3, 3, 3}, INFINITY, 0}},
                         {0, 1, 2, 1, 3, 2, 0, 0, 1, 2, 4, 0});
@@ -326,14 +326,14 @@ TEST(TangentFrame, DegenerateBasesAreFixed) {
   expectVec(xyz(mixed.texCoord(1, 1)), {1, 0, 0});
   // A stored normal along dP/dv = (0,-1,0): b has nothing left after Gram-Schmidt
   // and is rebuilt from n and t = (1,0,0).
-  Mesh tilted = texturedQuad(fvf::XYZ | fvf::NORMAL | fvf::tex(1));
+  Mesh tilted = texturedQuad(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
   for (uint32_t i = 0; i < 4; ++i) tilted.setNormal(i, {0, -1, 0});
   o.flags = 0;
   computeTangentFrame(tilted, o);
   expectOrthonormal(tilted, 1, 2);
   for (uint32_t i = 0; i < 4; ++i) expectVec(xyz(tilted.texCoord(i, 1)), {1, 0, 0});
   // A zero stored normal is replaced by the faces' normal.
-  Mesh zero = texturedQuad(fvf::XYZ | fvf::NORMAL | fvf::tex(1));
+  Mesh zero = texturedQuad(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
   computeTangentFrame(zero, o);
   for (uint32_t i = 0; i < 4; ++i) expectVec(zero.normal(i), {0, 0, -1});
 }
@@ -341,7 +341,7 @@ TEST(TangentFrame, DegenerateBasesAreFixed) {
 TEST(TangentFrame, OrthogonalizationOfAShearedMapping) {
   // One face with uv (0,0), (1,0), (1,1) on TL, TR, BL: (s1,t1) = (1,0),
   // (s2,t2) = (1,1), det = 1; dP/du = e1 = (1,0,0); dP/dv = e2*1 - e1*1 = (-1,-1,0).
-  Mesh base = makeMesh(fvf::XYZ | fvf::NORMAL | fvf::tex(1),
+  Mesh base = makeMesh(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1),
                        {{{0, 1, 0}, 0, 0}, {{1, 1, 0}, 1, 0}, {{0, 0, 0}, 1, 1}}, {0, 1, 2});
   for (uint32_t i = 0; i < 3; ++i) base.setNormal(i, {0, 0, -1});
   TangentFrameOptions o;
@@ -378,7 +378,7 @@ TEST(TangentFrame, OrthogonalizationOfAShearedMapping) {
 
 TEST(TangentFrame, UnnormalizedPartialsKeepTheStretch) {
   // The quad stretched to x in [0, 2] with u still in [0, 1]: |dP/du| = 2, |dP/dv| = 1.
-  Mesh m = makeMesh(fvf::XYZ | fvf::tex(1),
+  Mesh m = makeMesh(d3d::FVF_XYZ | d3d::fvfTex(1),
                     {{{0, 1, 0}, 0, 0}, {{2, 1, 0}, 1, 0}, {{0, 0, 0}, 0, 1}, {{2, 0, 0}, 1, 1}},
                     {0, 1, 2, 1, 3, 2});
   TangentFrameOptions o;
@@ -392,9 +392,9 @@ TEST(TangentFrame, UnnormalizedPartialsKeepTheStretch) {
 }
 
 TEST(TangentFrame, BadInputIsReported) {
-  Mesh noNormal = texturedQuad(fvf::XYZ | fvf::tex(1));
+  Mesh noNormal = texturedQuad(d3d::FVF_XYZ | d3d::fvfTex(1));
   EXPECT_THROW(computeTangentFrame(noNormal), Error);
-  Mesh m = texturedQuad(fvf::XYZ | fvf::NORMAL | fvf::tex(2));  // set 1 has 2 floats
+  Mesh m = texturedQuad(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2));  // set 1 has 2 floats
   EXPECT_THROW(computeTangentFrame(m), Error);
   TangentFrameOptions o;
   o.texIn = 3;

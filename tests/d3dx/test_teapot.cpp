@@ -34,7 +34,7 @@ TEST(BezierPatch, CountsAndLayout) {
   Vec3 cp[16];
   planarPatch(cp, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   Mesh m = createBezierPatch(cp, 5);
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL | fvf::tex(1));
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
   EXPECT_EQ(m.stride, 32u);            // 3 + 3 + 2 floats
   EXPECT_EQ(m.vertexCount(), 36u);     // (5+1)²
   EXPECT_EQ(m.faceCount(), 50u);       // 2 * 5²
@@ -102,7 +102,7 @@ TEST(Teapot, CountsAndFormat) {
     Mesh m = createTeapot(t);
     EXPECT_EQ(m.vertexCount(), 32 * (t + 1) * (t + 1));
     EXPECT_EQ(m.faceCount(), 64 * t * t);
-    EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL | fvf::tex(1));
+    EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
   }
   EXPECT_THROW(createTeapot(0), Error);
 }

@@ -147,7 +147,7 @@ void expectVec(Vec3 v, Vec3 e, float eps = 1e-6f) {
 // normal and each position's uv; vertices 0-5 are the file's vertices in order; a
 // position with 4 different normals (each is used by 4 faces) becomes 4 vertices.
 void expectOctahedron(const Mesh& m) {
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL | fvf::tex(1));  // 0x112
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));  // 0x112
   ASSERT_EQ(m.vertexCount(), 24u);                            // 6 positions x 4 normals
   ASSERT_EQ(m.faceCount(), 8u);
   for (uint32_t i = 0; i < 6; ++i) expectVec(m.position(i), kPositions[i]);
@@ -361,7 +361,7 @@ Mesh {
  MeshMaterialList { 2; 1; 1;; Material { 1;0;0;1;; 1; 0;0;0;; 0;0;0;; } Material { 0;1;0;1;; 1; 0;0;0;; 0;0;0;; } }
 }
 )");
-  EXPECT_EQ(m.fvf, fvf::XYZ);
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4, 5, 6, 7, 5, 7, 8}));
   EXPECT_EQ(m.attributes, (std::vector<uint32_t>{1, 1, 1, 1, 1}));
 }
@@ -375,7 +375,7 @@ Mesh {
  MeshVertexColors { 2; 0;1.0;0.0;0.0;1.0;;, 1;0.0;0.5;1.0;0.0;;; }
 }
 )");
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::DIFFUSE);
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_DIFFUSE);
   EXPECT_EQ(m.diffuse(0), 0xffff0000u);
   EXPECT_EQ(m.diffuse(1), 0x000080ffu);  // 0.5 * 255 + 0.5 = 128 = 0x80
   EXPECT_EQ(m.diffuse(2), 0xffffffffu);
@@ -456,7 +456,7 @@ Mesh {
  DeclData { 1; 2;0;5;1;; 9; 1065353216,0,0, 0,1073741824,0, 0,0,1056964608;; }
 }
 )");
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::tex(2) | fvf::texCoordSize(3, 1));
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::fvfTex(2) | d3d::fvfTexCoordSize(3, 1));
   EXPECT_EQ(m.texCoord(1, 0), Vec4(0, 1, 0, 0));
   EXPECT_EQ(m.texCoord(0, 1), Vec4(1, 0, 0, 0));
   EXPECT_EQ(m.texCoord(1, 1), Vec4(0, 2, 0, 0));
@@ -504,7 +504,7 @@ TEST(XFile, TexturedSphereRoundTrip) {
 }
 
 TEST(XFile, ColorsAndBoxRoundTrip) {
-  Mesh m = cloneMeshFVF(createBox(1, 2, 3), fvf::XYZ | fvf::NORMAL | fvf::DIFFUSE | fvf::tex(1));
+  Mesh m = cloneMeshFVF(createBox(1, 2, 3), d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::FVF_DIFFUSE | d3d::fvfTex(1));
   for (uint32_t i = 0; i < m.vertexCount(); ++i) {
     m.setDiffuse(i, 0x01020304u * i + 0x80000000u);
     m.setTexCoord(i, 0, float(i) / 7, 1.0f / float(i + 1));
@@ -518,7 +518,7 @@ TEST(XFile, CloneKeepsTheAttributeTable) {
   box.materials = {XMaterial{}, XMaterial{{0, 1, 0, 1}, 4, {}, {}, "green.png"}};
   box.attributes.assign(12, 1);
   box.attributes[0] = 0;
-  Mesh c = cloneMeshFVF(box, fvf::XYZ | fvf::tex(1));
+  Mesh c = cloneMeshFVF(box, d3d::FVF_XYZ | d3d::fvfTex(1));
   EXPECT_EQ(c.attributes, box.attributes);
   EXPECT_EQ(c.materials, box.materials);
   EXPECT_EQ(c.attribute(0), 0u);
@@ -527,7 +527,7 @@ TEST(XFile, CloneKeepsTheAttributeTable) {
 
 TEST(XFile, SavedTextIsTheDocumentedLayout) {
   // One triangle: the members and separators of the Mesh template as written by hand.
-  Mesh m(fvf::XYZ, 3, 1);
+  Mesh m(d3d::FVF_XYZ, 3, 1);
   m.setPosition(1, {0, 1, 0});
   m.setPosition(2, {1, 0.5f, 0});
   m.indices = {0, 1, 2};
@@ -597,7 +597,7 @@ TEST(OBJ, CubeWithTwoMaterials) {
   std::vector<std::string> warnings;
   Mesh m = loadOBJ((dir / "cube.obj").string(), &warnings);
   EXPECT_TRUE(warnings.empty()) << warnings[0];
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL | fvf::tex(1));
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
   // Every corner has its own (v, vt, vn): 6 faces x 4 corners, 2 triangles a face.
   ASSERT_EQ(m.vertexCount(), 24u);
   ASSERT_EQ(m.faceCount(), 12u);
@@ -638,7 +638,7 @@ TEST(OBJ, MissingMaterialLibraryIsAWarning) {
   ASSERT_EQ(warnings.size(), 2u);
   EXPECT_NE(warnings[0].find(":1: warning: material library"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[1].find(":5: warning: material 'red'"), std::string::npos) << warnings[1];
-  EXPECT_EQ(m.fvf, fvf::XYZ);
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 2, 1}));
   ASSERT_EQ(m.materials.size(), 1u);
   EXPECT_EQ(m.materials[0], XMaterial{});
@@ -652,7 +652,7 @@ TEST(OBJ, SharedCornersAndFacesBeforeUsemtl) {
       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
       "f 1//1 2//1 3//1\nusemtl a\nf 1//1 3//1 4//1\n",
       "shared.obj");
-  EXPECT_EQ(m.fvf, fvf::XYZ | fvf::NORMAL);
+  EXPECT_EQ(m.fvf, d3d::FVF_XYZ | d3d::FVF_NORMAL);
   ASSERT_EQ(m.vertexCount(), 4u);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 2, 1, 0, 3, 2}));
   EXPECT_EQ(m.normal(3), Vec3(0, 0, -1));
@@ -779,10 +779,10 @@ TEST(XFileErrors, BinaryUnknownTokenAndBadString) {
 }
 
 TEST(XFileErrors, SaveRejectsWhatTheFormatCannotHold) {
-  Mesh m(fvf::XYZ, 3, 1);
+  Mesh m(d3d::FVF_XYZ, 3, 1);
   m.setPosition(0, {std::nanf(""), 0, 0});
   EXPECT_THROW(xFileText(m), Error);
-  Mesh q(fvf::XYZ, 3, 1);
+  Mesh q(d3d::FVF_XYZ, 3, 1);
   q.materials = {XMaterial{}};
   q.materials[0].textureFilename = "a\"b.png";
   EXPECT_THROW(xFileText(q), Error);

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "refx/core/diagnostics.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 #include "refx/resource/image_io.h"
 
 namespace fs = std::filesystem;
@@ -70,7 +70,7 @@ TEST(GalleryProbes, EveryImageMatchesItsHandDerivedPixels) {
     ASSERT_TRUE(p.x >= 0 && p.y >= 0 && p.x < tex->width() && p.y < tex->height())
         << "pixel " << p.x << "," << p.y << " is outside the image";
     int got[4];
-    refx::readTargetPixel(*tex, p.x, p.y, got);
+    refx::scene::readTargetPixel(*tex, p.x, p.y, got);
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(got[c], p.rgb[c], p.tolerance)
           << "pixel " << p.x << "," << p.y << " channel " << "rgb"[c] << ": got " << got[0] << " " << got[1]

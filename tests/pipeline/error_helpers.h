@@ -4,7 +4,6 @@
 #include <string_view>
 
 #include "refx/core/diagnostics.h"
-#include "refx/pipeline/scene_script.h"
 
 namespace refx::test {
 
@@ -17,11 +16,6 @@ std::string errorOf(F&& f) {
     return e.what();
   }
   return "(no error)";
-}
-
-// The error of parsing `text` as the scene script "s.scene".
-inline std::string parseError(std::string_view text) {
-  return errorOf([&] { parseSceneScript(text, "s.scene"); });
 }
 
 }  // namespace refx::test

@@ -9,6 +9,7 @@
 
 #include "device_helpers.h"
 #include "error_helpers.h"
+#include "pipeline/shader_lowering.h"
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
 #include "refx/pipeline/dx8_declaration.h"
@@ -178,14 +179,14 @@ TEST(ShaderDevice, Ps1xIntermediateRangeFollowsTheProfile) {
 TEST(ShaderDevice, PrecisionSettingReachesTheLowering) {
   auto dev = profileDevice("dx81");
   const shader::Version ps14{shader::ShaderType::Pixel, 1, 4};
-  EXPECT_EQ(dev->shaderLoweringOptions(ps14).precision, exec::Precision::Exact);
-  EXPECT_EQ(dev->shaderLoweringOptions(ps14).pixelShader1xMaxValue, 8.0f);
+  EXPECT_EQ(pipeline::shaderLoweringOptions(*dev, ps14).precision, exec::Precision::Exact);
+  EXPECT_EQ(pipeline::shaderLoweringOptions(*dev, ps14).pixelShader1xMaxValue, 8.0f);
   dev->setPrecision(Precision::Hardware);
-  EXPECT_EQ(dev->shaderLoweringOptions(ps14).precision, exec::Precision::Hardware);
+  EXPECT_EQ(pipeline::shaderLoweringOptions(*dev, ps14).precision, exec::Precision::Hardware);
   // A profile without pixel shaders falls back to the version's minimum range.
   auto dx7 = profileDevice("dx7");
-  EXPECT_EQ(dx7->shaderLoweringOptions(ps14).pixelShader1xMaxValue, 8.0f);
-  EXPECT_EQ(dx7->shaderLoweringOptions({shader::ShaderType::Pixel, 1, 1}).pixelShader1xMaxValue, 1.0f);
+  EXPECT_EQ(pipeline::shaderLoweringOptions(*dx7, ps14).pixelShader1xMaxValue, 8.0f);
+  EXPECT_EQ(pipeline::shaderLoweringOptions(*dx7, {shader::ShaderType::Pixel, 1, 1}).pixelShader1xMaxValue, 1.0f);
 }
 
 TEST(ShaderDevice, VertexShaderFeedsFixedFunctionPixels) {

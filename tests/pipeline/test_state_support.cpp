@@ -14,11 +14,11 @@
 #include "pipeline/state_support.h"
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
 
 using namespace refx;
 using namespace refx::test;
 using namespace refx::d3d;
+using namespace refx::pipeline;
 
 namespace {
 
@@ -136,22 +136,4 @@ TEST(StateSupport, DefaultsAndNoEffectStatesAreAccepted) {
   EXPECT_NO_THROW(dev->setRenderState(RS_MULTISAMPLEMASK, 0x5));
   EXPECT_NO_THROW(dev->setRenderState(RS_DEBUGMONITORTOKEN, 1));
   EXPECT_EQ(dev->getRenderState(RS_MULTISAMPLEMASK), 0x5u);
-}
-
-TEST(StateSupport, SceneScriptsReportTheStateAtItsLine) {
-  Device device(CapsProfile{});
-  std::string err = errorOf([&] {
-    runSceneScript(parseSceneScript("clear 0xff000000\nrs LASTPIXEL TRUE\nrs LASTPIXEL FALSE\n",
-                                    "s.scene"),
-                   device);
-  });
-  EXPECT_EQ(err,
-            "s.scene:3: error: rs: D3DRS_LASTPIXEL is not implemented by refx (only its default "
-            "TRUE is accepted, not FALSE)");
-  err = errorOf([&] {
-    runSceneScript(parseSceneScript("samp 0 ELEMENTINDEX 2\n", "s.scene"), device);
-  });
-  EXPECT_EQ(err.rfind("s.scene:1: error: samp: D3DSAMP_ELEMENTINDEX is not implemented by refx", 0),
-            0u)
-      << err;
 }

@@ -12,6 +12,7 @@
 
 using namespace refx;
 using namespace refx::d3d;
+using namespace refx::pipeline;
 
 namespace {
 

@@ -9,7 +9,7 @@
 
 #include "device_helpers.h"
 #include "refx/core/diagnostics.h"
-#include "refx/d3dx/mesh.h"
+#include "refx/resource/vertex_format.h"
 
 namespace refx {
 namespace {
@@ -89,7 +89,7 @@ TEST(VertexBlendFVF, BetasBecomeBlendWeightAndIndices) {
     EXPECT_EQ(d.find(DECLUSAGE_COLOR, 0)->offset, c.stride - 4);
     EXPECT_EQ(d.streamStride(0), c.stride);
     // D3DX meshes lay out the same FVF with the same stride.
-    EXPECT_EQ(d3dx::fvf::stride(c.fvf | FVF_DIFFUSE), c.stride);
+    EXPECT_EQ(fvfStride(c.fvf | FVF_DIFFUSE), c.stride);
   }
 }
 

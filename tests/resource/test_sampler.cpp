@@ -15,6 +15,8 @@
 namespace refx {
 namespace {
 
+using namespace resource;
+
 constexpr int N = kBatchLanes;
 constexpr float kEps = 1e-5f;
 

@@ -13,6 +13,8 @@
 namespace refx {
 namespace {
 
+using namespace resource;
+
 constexpr int N = kBatchLanes;
 
 void fillRandom(Texture& tex, std::mt19937& rng) {

@@ -14,6 +14,8 @@
 namespace refx {
 namespace {
 
+using namespace resource;
+
 constexpr int N = kBatchLanes;
 
 TEST(SamplerFastPaths, CoherentBatchesMatchReference) {

@@ -89,8 +89,8 @@ TexturePtr hemisphereIntegralCube(int size) {
 // coordinate z, where the seed's vertex hemisphere shader reads it (v7.z).
 d3dx::Mesh teapotWithOcclusion() {
   const d3dx::Mesh t = d3dx::createTeapot(6);
-  d3dx::Mesh m = d3dx::cloneMeshFVF(t, d3dx::fvf::XYZ | d3dx::fvf::NORMAL | d3dx::fvf::tex(1) |
-                                           d3dx::fvf::texCoordSize(3, 0));
+  d3dx::Mesh m = d3dx::cloneMeshFVF(t, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1) |
+                                           d3d::fvfTexCoordSize(3, 0));
   const std::vector<float> visible = d3dx::computeHemisphereVisibility(t);
   for (uint32_t i = 0; i < m.vertexCount(); ++i) m.setTexCoord(i, 0, Vec4(0, 0, 1.0f - visible[i], 0));
   return m;

@@ -18,7 +18,7 @@
 #include "refx/pipeline/device.h"
 #include "refx/resource/image_io.h"
 #include "refx/shader/assembler.h"
-#include "racorx_scene.h"
+#include "refx/scene/racorx_scene.h"
 #include "samples.h"
 
 namespace refx::cli {
@@ -129,7 +129,7 @@ Scene makeScene(const std::string& geom, bool tangents) {
   Scene s;
   if (geom == "quad" && tangents) {
     // The same clip-space quad, facing the viewer (-z), tangent +x.
-    s.mesh = d3dx::Mesh(d3dx::fvf::XYZ | d3dx::fvf::NORMAL | d3dx::fvf::tex(2) | d3dx::fvf::texCoordSize(3, 1), 4, 2);
+    s.mesh = d3dx::Mesh(d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(2) | d3d::fvfTexCoordSize(3, 1), 4, 2);
     const float P[4][2] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
     const float T[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     for (uint32_t i = 0; i < 4; ++i) {
@@ -149,7 +149,7 @@ Scene makeScene(const std::string& geom, bool tangents) {
     s.sphere = true;
   } else if (geom == "quad") {
     // Clip-space quad with identity transforms, white diffuse, (u,v) 0..1.
-    s.mesh = d3dx::Mesh(d3dx::fvf::XYZ | d3dx::fvf::DIFFUSE | d3dx::fvf::tex(1), 4, 2);
+    s.mesh = d3dx::Mesh(d3d::FVF_XYZ | d3d::FVF_DIFFUSE | d3d::fvfTex(1), 4, 2);
     const float P[4][2] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
     const float T[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     for (uint32_t i = 0; i < 4; ++i) {
@@ -161,7 +161,7 @@ Scene makeScene(const std::string& geom, bool tangents) {
   } else if (geom == "sphere") {
     // 64x32 segments as the anchor; the texture wraps twice around.
     d3dx::Mesh m = d3dx::createTexturedSphere(1.0f, 64, 32);
-    s.mesh = d3dx::cloneMeshFVF(m, d3dx::fvf::XYZ | d3dx::fvf::NORMAL | d3dx::fvf::tex(1));
+    s.mesh = d3dx::cloneMeshFVF(m, d3d::FVF_XYZ | d3d::FVF_NORMAL | d3d::fvfTex(1));
     for (uint32_t i = 0; i < s.mesh.vertexCount(); ++i) {
       Vec4 t = s.mesh.texCoord(i, 0);
       s.mesh.setTexCoord(i, 0, t.x * 2.0f, t.y);
@@ -201,9 +201,9 @@ void setupShaderWorkload(Device& dev, const Scene& s, const std::string& workloa
     dev.setSamplerState(st, SAMP_MAGFILTER, 2);
     dev.setSamplerState(st, SAMP_MIPFILTER, 1);  // POINT: GL_LINEAR_MIPMAP_NEAREST
   }
-  samples::bindMesh(dev, s.mesh);
+  scene::bindMesh(dev, s.mesh);
   dev.setVertexShader(dev.createVertexShader(shader::assembleTokens(kRacorXBenchVS, "<bench vs>")));
-  dev.setPixelShader(samples::racorx::loadPixelShader(dev, workload == "racorx6" ? "racorx6_ps11.psh" : "racorx9_ps11.psh"));
+  dev.setPixelShader(scene::racorx::loadPixelShader(dev, workload == "racorx6" ? "racorx6_ps11.psh" : "racorx9_ps11.psh"));
   Matrix mvp = Matrix::identity();
   Vec3 light{0.3f, 0.4f, -1.0f}, eye{0, 0, -2.0f};  // the anchor's quad light and eye, facing -z
   if (s.sphere) {
@@ -218,10 +218,10 @@ void setupShaderWorkload(Device& dev, const Scene& s, const std::string& workloa
     dev.setRenderState(RS_ZENABLE, ZB_TRUE);
     dev.setRenderState(RS_ZFUNC, CMP_LESS);
   }
-  samples::racorx::setMatrix(dev, 0, mvp);
-  samples::racorx::setVector(dev, 4, Vec4(light, 1));
-  samples::racorx::setVector(dev, 5, Vec4(eye, 1));
-  samples::racorx::setVector(dev, 6, Vec4(0.5f, 0.5f, 0.5f, 0.5f));
+  scene::racorx::setMatrix(dev, 0, mvp);
+  scene::racorx::setVector(dev, 4, Vec4(light, 1));
+  scene::racorx::setVector(dev, 5, Vec4(eye, 1));
+  scene::racorx::setVector(dev, 6, Vec4(0.5f, 0.5f, 0.5f, 0.5f));
 }
 
 void setupDevice(Device& dev, const Scene& s, const TexturePtr& tex, int w, int h) {
@@ -232,7 +232,7 @@ void setupDevice(Device& dev, const Scene& s, const TexturePtr& tex, int w, int 
   dev.setTextureStageState(0, TSS_COLOROP, TOP_MODULATE);
   dev.setTextureStageState(0, TSS_COLORARG1, TA_TEXTURE);
   dev.setTextureStageState(0, TSS_COLORARG2, TA_DIFFUSE);
-  samples::bindMesh(dev, s.mesh);
+  scene::bindMesh(dev, s.mesh);
   if (!s.sphere) {
     dev.setRenderState(RS_LIGHTING, 0);
     return;

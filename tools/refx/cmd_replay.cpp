@@ -10,7 +10,7 @@
 #include "commands.h"
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 #include "refx/resource/image_io.h"
 
 namespace refx::cli {
@@ -64,7 +64,7 @@ int replay(const ReplayOptions& o) {
   }
 
   try {
-    SceneScript script = loadSceneScript(o.scene);
+    scene::SceneScript script = scene::loadSceneScript(o.scene);
     for (size_t i = 0; i < prints.size(); ++i)
       if (prints[i].x >= script.width || prints[i].y >= script.height)
         return usageError(fmt::format("--print {}: outside the {}x{} render target",
@@ -75,7 +75,7 @@ int replay(const ReplayOptions& o) {
     options.threads = o.threads;
     options.precision = o.precision == "hardware" ? Precision::Hardware : Precision::Exact;
     Device device(caps, options);
-    SceneOutput out = runSceneScript(script, device);
+    scene::SceneOutput out = scene::runSceneScript(script, device);
     const Texture* image = out.targets[size_t(o.target)].get();
     if (!image)
       return usageError(fmt::format("--target {}: the scene creates no render target {} (expected "
@@ -86,11 +86,11 @@ int replay(const ReplayOptions& o) {
         return usageError(fmt::format("--print {},{}: outside the {}x{} render target {}", p.x, p.y,
                                       image->width(), image->height(), o.target));
       int c[4];
-      readTargetPixel(*image, p.x, p.y, c);
+      scene::readTargetPixel(*image, p.x, p.y, c);
       std::printf("%d,%d: %d %d %d %d\n", p.x, p.y, c[0], c[1], c[2], c[3]);
     }
     if (o.check) {
-      std::vector<std::string> mismatches = checkSceneExpectations(script, out);
+      std::vector<std::string> mismatches = scene::checkSceneExpectations(script, out);
       for (const std::string& m : mismatches) std::printf("%s\n", m.c_str());
       std::fflush(stdout);
       if (!mismatches.empty()) return 1;

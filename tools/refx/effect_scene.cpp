@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "builtin_assets.h"
-#include "mesh_binding.h"
+#include "refx/scene/mesh_binding.h"
 #include "refx/core/text.h"
 #include "refx/d3dx/obj.h"
 #include "refx/d3dx/teapot.h"
@@ -251,7 +251,7 @@ void EffectScene::bindDeclarationStream(Device& device) {
     }
   }
   const d3dx::Mesh& m = mesh();
-  const d3dx::FVFLayout layout = m.layout();
+  const FVFLayout layout = m.layout();
   const uint32_t stride = decl.streamStride(0);
   auto vb = std::make_shared<VertexBuffer>();
   vb->data.assign(size_t(stride) * m.vertexCount(), 0);
@@ -374,7 +374,7 @@ void EffectScene::draw(Effect& fx, Device& device) {
   device.setRenderState(d3d::RS_ZENABLE, d3d::ZB_TRUE);
   device.clear(d3d::CLEAR_TARGET | d3d::CLEAR_ZBUFFER, background, 1.0f, 0);
 
-  samples::bindMesh(device, m);
+  scene::bindMesh(device, m);
   const int passes = fx.begin(device, 0);
   for (int i = 0; i < passes; ++i) {
     fx.beginPass(i);

@@ -19,7 +19,6 @@ namespace refx::samples {
 namespace {
 
 using namespace d3d;
-namespace fvf = d3dx::fvf;
 
 constexpr float kPi = 3.14159265358979f;
 
@@ -97,7 +96,7 @@ SampleResult renderMultipass(Device& dev, bool additive) {
       const uint16_t p = uint16_t(j * (n + 1) + i), q = uint16_t(p + n + 1);
       idx.insert(idx.end(), {p, q, uint16_t(p + 1), uint16_t(p + 1), q, uint16_t(q + 1)});
     }
-  dev.setFVF(fvf::XYZ | fvf::tex(2));
+  dev.setFVF(d3d::FVF_XYZ | d3d::fvfTex(2));
   auto draw = [&] {
     dev.drawIndexedPrimitiveUP(PT_TRIANGLELIST, 0, uint32_t(v.size()), uint32_t(idx.size() / 3),
                                idx.data(), false, v.data(), sizeof(FloorVertex));
@@ -185,7 +184,7 @@ SampleResult renderShapes(Device& dev) {
     m.power = 24;
     dev.setMaterial(m);
     dev.setTransform(TS_WORLD, it.world);
-    bindMesh(dev, it.mesh);
+    scene::bindMesh(dev, it.mesh);
     drawMesh(dev, it.mesh);
   }
   r.technique = "fixed-function lighting: directional light, specular (power 24)";

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh_binding.h"
+#include "refx/scene/mesh_binding.h"
 #include "refx/d3dx/mesh.h"
 #include "refx/pipeline/device.h"
 

@@ -8,48 +8,9 @@
 
 #include "refx/core/color.h"
 #include "refx/core/math.h"
+#include "refx/resource/vertex_format.h"
 
 namespace refx::d3dx {
-
-// D3DFVF_* bits. The values are D3D's, so a device builds its vertex declaration
-// from Mesh::fvf with VertexDeclaration::fromFVF.
-namespace fvf {
-constexpr uint32_t XYZ = 0x002, XYZRHW = 0x004, XYZW = 0x4002, POSITION_MASK = 0x400e;
-// XYZBn: x y z then n = 1-5 betas; with a LASTBETA flag the last beta is a DWORD of
-// four matrix indices (the BLENDINDICES of indexed vertex blending).
-constexpr uint32_t XYZB1 = 0x006, XYZB2 = 0x008, XYZB3 = 0x00a, XYZB4 = 0x00c, XYZB5 = 0x00e;
-constexpr uint32_t LASTBETA_UBYTE4 = 0x1000, LASTBETA_D3DCOLOR = 0x8000;
-constexpr uint32_t NORMAL = 0x010, PSIZE = 0x020, DIFFUSE = 0x040, SPECULAR = 0x080;
-constexpr uint32_t TEXCOUNT_MASK = 0xf00, TEXCOUNT_SHIFT = 8;
-// D3DFVF_TEXn.
-constexpr uint32_t tex(int count) { return uint32_t(count) << TEXCOUNT_SHIFT; }
-// D3DFVF_TEXCOORDSIZEn(i): bits 16+2i hold 0 = 2 floats, 1 = 3, 2 = 4, 3 = 1.
-constexpr uint32_t texCoordSize(int dims, int index) {
-  uint32_t code = dims == 1 ? 3u : dims == 3 ? 1u : dims == 4 ? 2u : 0u;
-  return code << (16 + 2 * index);
-}
-constexpr int texCoordDims(uint32_t fvf, int index) {
-  uint32_t code = (fvf >> (16 + 2 * index)) & 3;
-  return code == 0 ? 2 : code == 1 ? 3 : code == 2 ? 4 : 1;
-}
-constexpr int texCount(uint32_t fvf) { return int((fvf & TEXCOUNT_MASK) >> TEXCOUNT_SHIFT); }
-// Size in bytes of one vertex; throws refx::Error for codes D3D rejects (TEX9+).
-uint32_t stride(uint32_t fvf);
-}  // namespace fvf
-
-// Byte offsets of the elements of an FVF vertex, in D3D's fixed order (position,
-// blend weights, normal, point size, diffuse, specular, texture coordinate sets);
-// -1 where the element is absent.
-struct FVFLayout {
-  int position = -1, normal = -1, psize = -1, diffuse = -1, specular = -1;
-  // Blend weights (floats after x y z) and the packed matrix indices (the last beta of
-  // an XYZB5 or LASTBETA_* position); -1 / 0 when absent.
-  int blendWeights = -1, blendWeightCount = 0, blendIndices = -1;
-  int texCoord[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
-  int texDims[8] = {};
-  uint32_t stride = 0;
-  static FVFLayout of(uint32_t fvf);
-};
 
 // A material of the attribute table, as a .x file's Material template holds it
 // (faceColor, power, specularColor, emissiveColor, TextureFilename).

@@ -128,45 +128,6 @@ enum VertexBlend : uint32_t { VBF_DISABLE = 0, VBF_1WEIGHTS = 1, VBF_2WEIGHTS = 
 // D3DCLEAR_*
 enum ClearFlags : uint32_t { CLEAR_TARGET = 1, CLEAR_ZBUFFER = 2, CLEAR_STENCIL = 4 };
 
-// D3DFVF_*
-enum FVF : uint32_t {
-  FVF_XYZ = 0x002, FVF_XYZRHW = 0x004, FVF_XYZB1 = 0x006, FVF_XYZB2 = 0x008,
-  FVF_XYZB3 = 0x00a, FVF_XYZB4 = 0x00c, FVF_XYZB5 = 0x00e, FVF_XYZW = 0x4002,
-  FVF_POSITION_MASK = 0x400e, FVF_NORMAL = 0x010, FVF_PSIZE = 0x020, FVF_DIFFUSE = 0x040,
-  FVF_SPECULAR = 0x080, FVF_TEXCOUNT_MASK = 0xf00, FVF_TEXCOUNT_SHIFT = 8,
-  // The last beta of XYZB1-5 holds four 8-bit matrix indices (indexed vertex blending).
-  FVF_LASTBETA_UBYTE4 = 0x1000, FVF_LASTBETA_D3DCOLOR = 0x8000,
-};
-// Number of betas (floats after x y z) of an XYZB1-XYZB5 position; 0 for the others.
-constexpr int fvfBetaCount(uint32_t fvf) {
-  const uint32_t pos = fvf & FVF_POSITION_MASK;
-  return pos >= FVF_XYZB1 && pos <= FVF_XYZB5 ? int(pos - FVF_XYZB1) / 2 + 1 : 0;
-}
-// D3DFVF_TEXCOORDSIZEn(i): bits 16+2i. 0 = 2 floats, 1 = 3, 2 = 4, 3 = 1.
-constexpr uint32_t fvfTexCoordSize(int dims, int index) {
-  uint32_t code = dims == 1 ? 3u : dims == 3 ? 1u : dims == 4 ? 2u : 0u;
-  return code << (16 + 2 * index);
-}
-constexpr int fvfTexCoordDims(uint32_t fvf, int index) {
-  uint32_t code = (fvf >> (16 + 2 * index)) & 3;
-  return code == 0 ? 2 : code == 1 ? 3 : code == 2 ? 4 : 1;
-}
-
-// D3DDECLTYPE
-enum DeclType : uint8_t {
-  DECLTYPE_FLOAT1 = 0, DECLTYPE_FLOAT2, DECLTYPE_FLOAT3, DECLTYPE_FLOAT4, DECLTYPE_D3DCOLOR,
-  DECLTYPE_UBYTE4, DECLTYPE_SHORT2, DECLTYPE_SHORT4, DECLTYPE_UBYTE4N, DECLTYPE_SHORT2N,
-  DECLTYPE_SHORT4N, DECLTYPE_USHORT2N, DECLTYPE_USHORT4N, DECLTYPE_UDEC3, DECLTYPE_DEC3N,
-  DECLTYPE_FLOAT16_2, DECLTYPE_FLOAT16_4, DECLTYPE_UNUSED = 17,
-};
-// D3DDECLUSAGE
-enum DeclUsage : uint8_t {
-  DECLUSAGE_POSITION = 0, DECLUSAGE_BLENDWEIGHT, DECLUSAGE_BLENDINDICES, DECLUSAGE_NORMAL,
-  DECLUSAGE_PSIZE, DECLUSAGE_TEXCOORD, DECLUSAGE_TANGENT, DECLUSAGE_BINORMAL,
-  DECLUSAGE_TESSFACTOR, DECLUSAGE_POSITIONT, DECLUSAGE_COLOR, DECLUSAGE_FOG, DECLUSAGE_DEPTH,
-  DECLUSAGE_SAMPLE,
-};
-
 // Enumerations with names, for parsing scene scripts / effect states and printing
 // validation messages.
 enum class EnumKind {

@@ -134,14 +134,10 @@ class Device {
   void setPixelShaderConstantB(uint32_t start, const int* data, uint32_t count);
   // The version rules' device limits from the caps profile.
   shader::ValidationCaps shaderValidationCaps() const;
-  // How pixel shaders are lowered on this device: the precision model and the
-  // profile's PixelShader1xMaxValue.
-  exec::ShaderLoweringOptions shaderLoweringOptions(shader::Version version) const;
 
   StateBlock createStateBlock() const { return StateBlock(state_); }
   void applyStateBlock(const StateBlock& sb) { state_ = sb.state(); }
   const DeviceState& state() const { return state_; }
-  DeviceState& mutableState() { return state_; }
 
   // ValidateDevice against the active caps profile.
   // (with the render targets bound: NumSimultaneousRTs, MRTINDEPENDENTBITDEPTHS)

@@ -1,14 +1,12 @@
 // Shader objects of the device (IDirect3DVertexShader9 / IDirect3DPixelShader9): the
-// token stream as created, its decoded form, and the exec programs it lowers to.
+// token stream as created and its decoded form (the exec programs it lowers to are the
+// pipeline's own business: src/pipeline/shader_lowering.h).
 #pragma once
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <span>
-#include <utility>
 #include <vector>
 
-#include "refx/exec/lower.h"
 #include "refx/pipeline/caps.h"
 #include "refx/shader/bytecode.h"
 #include "refx/shader/validator.h"
@@ -19,15 +17,16 @@ class ShaderObject {
  public:
   ShaderObject(const ShaderObject&) = delete;
   ShaderObject& operator=(const ShaderObject&) = delete;
-  virtual ~ShaderObject() = default;
+  virtual ~ShaderObject();
 
   const std::vector<uint32_t>& tokens() const { return tokens_; }
   const shader::Shader& decoded() const { return shader_; }
   shader::Version version() const { return shader_.version; }
 
-  // The program lowered with `options`: lowered once per distinct options and kept
-  // (the lowering depends on the precision model and the profile's value range).
-  std::shared_ptr<const exec::LoweredShader> lowered(const exec::ShaderLoweringOptions& options) const;
+  // The programs the shader lowered to, one per distinct lowering options (defined by
+  // the pipeline, which alone runs them).
+  struct LoweringCache;
+  LoweringCache& loweringCache() const { return *lowering_; }
 
  protected:
   // Decodes, validates (refx::Error listing every rule broken, one per line) and lowers once, so a
@@ -38,9 +37,7 @@ class ShaderObject {
  private:
   std::vector<uint32_t> tokens_;
   shader::Shader shader_;
-  mutable std::mutex mutex_;
-  mutable std::vector<std::pair<exec::ShaderLoweringOptions, std::shared_ptr<const exec::LoweredShader>>>
-      cache_;
+  std::unique_ptr<LoweringCache> lowering_;
 };
 
 class VertexShader : public ShaderObject {

@@ -11,6 +11,7 @@
 #include "refx/core/math.h"
 #include "refx/pipeline/d3d9types.h"
 #include "refx/resource/texture.h"
+#include "refx/resource/vertex_format.h"
 
 namespace refx {
 
@@ -46,29 +47,6 @@ struct Viewport {  // D3DVIEWPORT9
 
 struct Rect {
   int left = 0, top = 0, right = 0, bottom = 0;
-};
-
-struct VertexElement {  // D3DVERTEXELEMENT9
-  uint16_t stream = 0;
-  uint16_t offset = 0;
-  uint8_t type = d3d::DECLTYPE_FLOAT3;
-  uint8_t method = 0;
-  uint8_t usage = d3d::DECLUSAGE_POSITION;
-  uint8_t usageIndex = 0;
-  // The v register this element feeds in a vs_1_1 shader without dcl instructions
-  // (a DirectX 8 declaration's D3DVSD_REG); -1: the D3DVSDE register of its usage.
-  int8_t shaderRegister = -1;
-  bool operator==(const VertexElement&) const = default;
-};
-
-struct VertexDeclaration {
-  std::vector<VertexElement> elements;
-  uint32_t fvf = 0;  // nonzero when made from an FVF code
-  static VertexDeclaration fromFVF(uint32_t fvf);
-  // Size in bytes of one vertex of stream `stream` (max offset+size of its elements).
-  uint32_t streamStride(int stream) const;
-  const VertexElement* find(uint8_t usage, uint8_t usageIndex) const;
-  bool operator==(const VertexDeclaration&) const = default;
 };
 
 struct VertexBuffer {

@@ -4,12 +4,12 @@
 // D3D9's "Multiple Render Targets" rules and are worked out by hand.
 #include <gtest/gtest.h>
 
-#include "error_helpers.h"
+#include "pipeline/error_helpers.h"
 
 #include <cstring>
 #include <string>
 
-#include "device_helpers.h"
+#include "pipeline/device_helpers.h"
 #include "refx/core/diagnostics.h"
 #include "refx/hlsl/compiler.h"
 #include "refx/pipeline/device.h"

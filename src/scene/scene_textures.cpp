@@ -6,31 +6,15 @@
 #include <functional>
 
 #include "refx/core/diagnostics.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/d3dx/texture_fill.h"
+#include "refx/scene/scene_script.h"
 
-namespace refx {
-
-using namespace scene;
+namespace refx::scene {
 
 namespace {
 
 const char* typeName(TextureType t) {
   return t == TextureType::Cube ? "cube" : t == TextureType::Volume ? "volume" : "2d";
-}
-
-// Centre direction of texel (x, y) of a cube face, D3DCUBEMAP_FACES order
-// (+X -X +Y -Y +Z -Z). s grows to the right, t downwards, both in (-1, 1).
-Vec3 cubeDirection(int face, int x, int y, int size) {
-  float s = 2.0f * (float(x) + 0.5f) / float(size) - 1.0f;
-  float t = 2.0f * (float(y) + 0.5f) / float(size) - 1.0f;
-  switch (face) {
-    case 0: return {1, -t, -s};
-    case 1: return {-1, -t, s};
-    case 2: return {s, 1, t};
-    case 3: return {s, -1, -t};
-    case 4: return {s, -t, 1};
-    default: return {-s, -t, -1};
-  }
 }
 
 // splitmix64: small, fast and the same on every platform.
@@ -139,7 +123,7 @@ TexturePtr createSceneTexture(const TextureDef& def, const Texture* image) {
     case Generator::Normalize:
       if (def.type != TextureType::Cube) fail("texture: normalize needs a cube texture");
       fn = [&](int face, int x, int y, int) {
-        return vectorColor(normalize(cubeDirection(face, x, y, W)));
+        return vectorColor(normalize(d3dx::cubeTexelDirection(face, float(x), float(y), W)));
       };
       break;
     case Generator::Faces:
@@ -176,4 +160,4 @@ TexturePtr createSceneTexture(const TextureDef& def, const Texture* image) {
   return tex;
 }
 
-}  // namespace refx
+}  // namespace refx::scene

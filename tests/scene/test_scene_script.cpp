@@ -3,14 +3,14 @@
 // reference/scene-script.md and D3D9's definitions.
 #include <gtest/gtest.h>
 
-#include "error_helpers.h"
+#include "scene/scene_helpers.h"
 
 #include <cmath>
 #include <cstring>
 #include <unistd.h>
 
 #include "refx/core/diagnostics.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 using namespace refx;
 using namespace refx::test;

@@ -2,13 +2,13 @@
 // `transform WORLDn` (D3DTS_WORLDMATRIX(n)).
 #include <gtest/gtest.h>
 
-#include "error_helpers.h"
+#include "scene/scene_helpers.h"
 
 #include <cstring>
 #include <string>
 
 #include "refx/core/diagnostics.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 namespace refx {
 namespace {

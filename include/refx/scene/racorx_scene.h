@@ -23,9 +23,8 @@
 #include "refx/d3dx/texture_fill.h"
 #include "refx/pipeline/device.h"
 #include "refx/shader/assembler.h"
-#include "mesh_binding.h"
 
-namespace refx::samples::racorx {
+namespace refx::scene::racorx {
 
 inline std::string shaderPath(const std::string& file) { return std::string(REFX_DATA_DIR) + "/shaders/" + file; }
 
@@ -159,4 +158,4 @@ inline void setupRacorX8(Device& dev, const View& v, const SpecularTextures& t, 
   clampAddressing(dev, 2);
 }
 
-}  // namespace refx::samples::racorx
+}  // namespace refx::scene::racorx

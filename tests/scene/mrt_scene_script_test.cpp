@@ -2,13 +2,13 @@
 // `# expect@N X Y r g b a [tolerance]` (docs/scene_script_render_targets.md).
 #include <gtest/gtest.h>
 
-#include "error_helpers.h"
+#include "scene/scene_helpers.h"
 
 #include <string>
 
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 using namespace refx;
 using namespace refx::test;

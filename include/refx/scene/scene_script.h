@@ -18,11 +18,11 @@
 #include "refx/resource/texture.h"
 
 namespace refx {
-
 class Device;
 struct DepthStencilSurface;
+}  // namespace refx
 
-namespace scene {
+namespace refx::scene {
 
 // `clear COLOR [Z [STENCIL]]`: target, Z and stencil together.
 struct Clear {
@@ -147,8 +147,6 @@ struct Expectation {
   int tolerance = 2;
 };
 
-}  // namespace scene
-
 struct SceneScript {
   std::string file;  // names the script in messages; relative paths resolve from its folder
   int width = 64, height = 64;
@@ -188,4 +186,4 @@ void readTargetPixel(const Texture& target, int x, int y, int rgba[4]);
 // `expect@N`).
 std::vector<std::string> checkSceneExpectations(const SceneScript& script, const SceneOutput& output);
 
-}  // namespace refx
+}  // namespace refx::scene

@@ -9,10 +9,11 @@
 #include <variant>
 #include <vector>
 
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 
 namespace fs = std::filesystem;
 using namespace refx;
+using namespace refx::scene;
 
 namespace {
 

@@ -6,14 +6,12 @@
 
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/device.h"
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 #include "refx/resource/image_io.h"
 #include "refx/shader/assembler.h"
 #include "refx/shader/validator.h"
 
-namespace refx {
-
-using namespace scene;
+namespace refx::scene {
 
 namespace {
 
@@ -220,4 +218,4 @@ SceneOutput runSceneScript(const SceneScript& script, Device& device,
   return Runner(script, device, filter).run();
 }
 
-}  // namespace refx
+}  // namespace refx::scene

@@ -4,7 +4,7 @@
 // `hardware` precision model the four squarings run on 8-bit fixed point and band;
 // the lookup table does not. In `exact` precision both are smooth.
 //
-// The scenes are the samples' own (tools/refx/racorx_scene.h: the same shader files,
+// The scenes are the samples' own (include/refx/scene/racorx_scene.h: the same shader files,
 // constants and states), on a white color map and a flat normal map so that the only
 // variation left in the highlight is the specular term.
 #include <gtest/gtest.h>
@@ -12,14 +12,15 @@
 #include <algorithm>
 #include <set>
 
-#include "../../tools/refx/racorx_scene.h"
+#include "refx/scene/mesh_binding.h"
+#include "refx/scene/racorx_scene.h"
 
 namespace refx {
 namespace {
 
-using samples::racorx::PSVersion;
-using samples::racorx::SpecularTextures;
-using samples::racorx::View;
+using scene::racorx::PSVersion;
+using scene::racorx::SpecularTextures;
+using scene::racorx::View;
 
 constexpr int kSize = 256;
 
@@ -49,17 +50,17 @@ std::vector<uint8_t> render(bool racorx8, Precision precision) {
 
   static const SpecularTextures textures{solid(255, 255, 255, 255),  // white color map
                                          solid(128, 128, 255, 255),  // flat normal (0, 0, 1)
-                                         samples::racorx::racorx8Table()};
-  View v = samples::racorx::globeView(dev, Matrix::identity());
+                                         scene::racorx::racorx8Table()};
+  View v = scene::racorx::globeView(dev, Matrix::identity());
   // Light from the upper left behind the viewer: the highlight sits on the visible side.
   v.lightDirection = -normalize(Vec3{0.3f, 0.4f, -1.0f});
   if (racorx8)
-    samples::racorx::setupRacorX8(dev, v, textures, PSVersion::PS11);
+    scene::racorx::setupRacorX8(dev, v, textures, PSVersion::PS11);
   else
-    samples::racorx::setupRacorX7(dev, v, textures, PSVersion::PS11);
-  static const d3dx::Mesh sphere = samples::racorx::globe(64, 32);
-  samples::bindMesh(dev, sphere);
-  samples::racorx::drawGlobe(dev, sphere);
+    scene::racorx::setupRacorX7(dev, v, textures, PSVersion::PS11);
+  static const d3dx::Mesh sphere = scene::racorx::globe(64, 32);
+  scene::bindMesh(dev, sphere);
+  scene::racorx::drawGlobe(dev, sphere);
 
   const Texture& rt = *dev.renderTarget();
   const uint8_t* p = rt.data(0, 0);

@@ -5,8 +5,8 @@
 #include <cstring>
 #include <variant>
 
-#include "error_helpers.h"
-#include "refx/pipeline/scene_script.h"
+#include "scene/scene_helpers.h"
+#include "refx/scene/scene_script.h"
 
 using namespace refx;
 using namespace refx::scene;

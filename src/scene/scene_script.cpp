@@ -1,5 +1,5 @@
 // Scene script parser: text -> typed commands with every name and value resolved.
-#include "refx/pipeline/scene_script.h"
+#include "refx/scene/scene_script.h"
 #include "refx/core/text.h"
 
 #include <algorithm>
@@ -18,9 +18,7 @@
 #include "refx/core/diagnostics.h"
 #include "refx/pipeline/d3d9types.h"
 
-namespace refx {
-
-using namespace scene;
+namespace refx::scene {
 
 namespace {
 
@@ -758,12 +756,12 @@ class Parser {
     struct TypeInfo {
       std::string_view name;
       uint8_t type;
-      uint32_t size, values;
+      uint32_t values;
     };
     static constexpr TypeInfo kTypes[] = {
-        {"float1", d3d::DECLTYPE_FLOAT1, 4, 1}, {"float2", d3d::DECLTYPE_FLOAT2, 8, 2},
-        {"float3", d3d::DECLTYPE_FLOAT3, 12, 3}, {"float4", d3d::DECLTYPE_FLOAT4, 16, 4},
-        {"d3dcolor", d3d::DECLTYPE_D3DCOLOR, 4, 1}, {"ubyte4", d3d::DECLTYPE_UBYTE4, 4, 4}};
+        {"float1", d3d::DECLTYPE_FLOAT1, 1}, {"float2", d3d::DECLTYPE_FLOAT2, 2},
+        {"float3", d3d::DECLTYPE_FLOAT3, 3}, {"float4", d3d::DECLTYPE_FLOAT4, 4},
+        {"d3dcolor", d3d::DECLTYPE_D3DCOLOR, 1}, {"ubyte4", d3d::DECLTYPE_UBYTE4, 4}};
     DeclLayout d;
     for (size_t i = 1; i <= argc(); ++i) {
       const std::string e = lower(arg(i));
@@ -797,7 +795,7 @@ class Parser {
       el.usageIndex = uint8_t(index);
       d.declaration.elements.push_back(el);
       d.types.push_back(type->type);
-      d.stride += type->size;
+      d.stride += declTypeSize(type->type);
       d.valueCount += type->values;
     }
     if (!d.declaration.find(d3d::DECLUSAGE_POSITION, 0) && !d.declaration.find(d3d::DECLUSAGE_POSITIONT, 0))
@@ -1169,4 +1167,4 @@ std::vector<std::string> checkSceneExpectations(const SceneScript& script, const
   return out;
 }
 
-}  // namespace refx
+}  // namespace refx::scene
