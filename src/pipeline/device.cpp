@@ -15,6 +15,7 @@
 #include "state_support.h"
 #include "refx/core/diagnostics.h"
 #include "refx/resource/sampler.h"
+#include "refx/shader/version_rules.h"
 #include "render_targets.h"
 #include "validate.h"
 #include "vertex_fetch.h"
@@ -275,7 +276,8 @@ exec::ShaderLoweringOptions Device::shaderLoweringOptions(shader::Version versio
   // PixelShader1xMaxValue of the profile; a profile without pixel shaders gets the
   // version's minimum (1 for ps_1_1-1_3, 8 for ps_1_4).
   const float maxValue = caps_.pixelShader1xMaxValue;
-  o.pixelShader1xMaxValue = maxValue > 0 ? maxValue : version.atLeast(1, 4) ? 8.0f : 1.0f;
+  const shader::VersionRules* rules = shader::findVersionRules(version);
+  o.pixelShader1xMaxValue = maxValue > 0 ? maxValue : rules ? std::max(rules->minRegisterRange, 1.0f) : 1.0f;
   // Vertex colors reach the pixel stage within [0,1] (clamped per vertex below ps_3_0).
   o.colorInputsInRange = true;
   // ps_1_1-1_3 `tex t(m)` divides by the coordinates' last component when stage m has

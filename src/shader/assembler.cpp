@@ -574,7 +574,7 @@ class Parser {
   }
 
   std::string registerText(RegType t, uint32_t index) const {
-    return registerDisplayName(t, index, shader_.version);
+    return registerName(t, index, shader_.version);
   }
 
   // `[a0.x + n]`, `[n + a0.x]`, `[aL]`, `[5]`: adds the constant part to `index`.

@@ -194,32 +194,4 @@ std::string registerHelp(Version v) {
   return s;
 }
 
-std::string registerDisplayName(RegType type, uint32_t index, Version v) {
-  struct D {
-    RegType type;
-    const char* name;
-    bool indexed;
-  };
-  static constexpr D vs[] = {{RegType::Temp, "r", true},       {RegType::Input, "v", true},
-                             {RegType::Const, "c", true},      {RegType::Addr, "a", true},
-                             {RegType::AttrOut, "oD", true},   {RegType::TexCrdOut, "oT", true},
-                             {RegType::ConstInt, "i", true},   {RegType::ConstBool, "b", true},
-                             {RegType::Sampler, "s", true},    {RegType::Loop, "aL", false},
-                             {RegType::Label, "l", true},      {RegType::Predicate, "p", true}};
-  static constexpr D ps[] = {{RegType::Temp, "r", true},       {RegType::Input, "v", true},
-                             {RegType::Const, "c", true},      {RegType::Texture, "t", true},
-                             {RegType::ColorOut, "oC", true},  {RegType::DepthOut, "oDepth", false},
-                             {RegType::ConstInt, "i", true},   {RegType::ConstBool, "b", true},
-                             {RegType::Sampler, "s", true},    {RegType::Loop, "aL", false},
-                             {RegType::Label, "l", true},      {RegType::Predicate, "p", true}};
-  if (v.isVertex() && type == RegType::RastOut) return index == 0 ? "oPos" : index == 1 ? "oFog" : "oPts";
-  if (v.isVertex() && v.major >= 3 && type == RegType::Output) return fmt::format("o{}", index);
-  if (v.isPixel() && type == RegType::MiscType) return index == 0 ? "vPos" : "vFace";
-  const D* begin = v.isVertex() ? std::begin(vs) : std::begin(ps);
-  const D* end = v.isVertex() ? std::end(vs) : std::end(ps);
-  for (const D* d = begin; d != end; ++d)
-    if (d->type == type) return d->indexed ? fmt::format("{}{}", d->name, index) : std::string(d->name);
-  return fmt::format("register type {}", int(type));
-}
-
 }  // namespace refx::shader::asmtables

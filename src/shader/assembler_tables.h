@@ -8,6 +8,7 @@
 
 #include "refx/shader/bytecode.h"
 #include "refx/shader/opcode_table.h"
+#include "refx/shader/version_rules.h"
 
 namespace refx::shader::asmtables {
 
@@ -50,6 +51,5 @@ struct RegisterName {
 const RegisterName* findRegisterName(std::string_view letters, Version version);
 // "registers of vs_1_1: r#, v#, c#, a0, oPos, …" for messages.
 std::string registerHelp(Version version);
-std::string registerDisplayName(RegType type, uint32_t index, Version version);
 
 }  // namespace refx::shader::asmtables

@@ -13,6 +13,7 @@
 #include "refx/shader/constant_table.h"
 #include "refx/shader/opcode_table.h"
 #include "refx/shader/validator.h"
+#include "refx/shader/version_rules.h"
 
 
 namespace refx::shader {
