@@ -104,7 +104,8 @@ std::string srcText(const SrcParam& s, Version version) {
 // The assembler reads a missing mask on m3x3/m4x3/m3x2 as the components they compute
 // (.xyz/.xy), so a full mask is written out there to reassemble to the same token.
 std::string dstText(const DstParam& d, Opcode op, Version version) {
-  const bool maskImpliedByOpcode = op == Opcode::M3x3 || op == Opcode::M4x3 || op == Opcode::M3x2;
+  const OpcodeInfo* info = findOpcode(op);
+  const bool maskImpliedByOpcode = info && info->matrixRows > 0 && info->matrixRows < 4;
   const bool full = (d.writeMask & 0xF) == 0xF;
   return registerText(d.type, d.index, d.relative, version.sm2plus() ? d.rel : RelativeAddress{}, version) +
          (full && maskImpliedByOpcode ? std::string(".xyzw") : maskText(d.writeMask));
