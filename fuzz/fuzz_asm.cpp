@@ -1,6 +1,8 @@
 // Shader assembler fuzz target: any text either assembles or gives refx::Error; what
 // assembles encodes, decodes, and the decoded model encodes to the same tokens. The
-// same text is also read as a DirectX 8 vertex shader declaration.
+// diagnostics form agrees with the throwing one: errors exactly when it throws, each
+// with an assembler code and a line, at most 100 and the stop notice. The same text is
+// also read as a DirectX 8 vertex shader declaration.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -33,12 +35,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace refx::shader;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   declaration(text);
+  refx::DiagnosticSink diagnostics;
+  (void)assemble(text, "fuzz.asm", diagnostics);
+  if (diagnostics.all().size() > 101) std::abort();
+  for (const refx::Diagnostic& d : diagnostics.all())
+    if (d.code.size() != 5 || d.code[0] != 'A' || d.where.line < 1 || d.severity != refx::Severity::Error)
+      std::abort();
   Shader shader;
   try {
     shader = assemble(text, "fuzz.asm");
   } catch (const refx::Error&) {
+    if (!diagnostics.hasErrors()) std::abort();
     return 0;
   }
+  if (diagnostics.hasErrors()) std::abort();
   std::vector<uint32_t> tokens;
   try {
     tokens = encode(shader);

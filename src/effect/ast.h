@@ -101,7 +101,8 @@ struct EffectAst {
 // dimensions (matrices as MatrixColumns); nullopt for any other word.
 std::optional<ParameterDesc> numericTypeName(std::string_view name);
 
-// Throws refx::Error on a syntax error.
+// Throws refx::Error listing every syntax error of the file, one per line, each with
+// its code (F10xx lexical and preprocessor, F11xx syntax).
 EffectAst parseEffect(std::string_view text, const std::string& fileName, const EffectOptions& options);
 
 }  // namespace refx::effect::detail

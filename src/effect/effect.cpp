@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "ast.h"
+#include "effect_errors.h"
 #include "effect_internal.h"
 #include "fx2_reader.h"
 #include "fxlc.h"
@@ -51,7 +52,8 @@ std::string_view parameterTypeName(ParameterType type) {
 
 std::string EffectDiagnostic::str() const {
   const std::string loc = where.str();
-  return fmt::format("{}{}{}: {}", loc, loc.empty() ? "" : ": ", error ? "error" : "warning", message);
+  return fmt::format("{}{}{}{}{}: {}", loc, loc.empty() ? "" : ": ", error ? "error" : "warning", code.empty() ? "" : " ",
+                     code, message);
 }
 
 namespace {
@@ -119,13 +121,13 @@ uint32_t toDword(double x) { return uint32_t(toInteger(x)); }
 
 // `p[i]` on an array parameter of `elements` elements.
 void checkElementIndex(const Expr& e, const Expr& base, int i, int elements) {
-  if (i < 0 || i >= elements) failAt(e.where, "index {} is outside '{}[{}]'", i, base.text, elements);
+  if (i < 0 || i >= elements) failCode("F1205", e.where, "index {} is outside '{}[{}]'", i, base.text, elements);
 }
 
 // `v[i]` on a value: row i of a matrix, component i of anything else, as (first, count).
 std::pair<size_t, size_t> indexedRow(const Expr& e, int i, int rows, int columns, size_t size) {
   const size_t per = columns > 0 && rows > 1 ? size_t(columns) : 1;
-  if (i < 0 || (size_t(i) + 1) * per > size) failAt(e.where, "index {} is out of range", i);
+  if (i < 0 || (size_t(i) + 1) * per > size) failCode("F1205", e.where, "index {} is out of range", i);
   return {size_t(i) * per, per};
 }
 
@@ -138,7 +140,7 @@ std::vector<size_t> swizzleComponents(const Expr& e, size_t count) {
     size_t k = xyzw.find(c);
     if (k == std::string_view::npos) k = rgba.find(c);
     if (k == std::string_view::npos || k >= count || e.text.size() > 4)
-      failAt(e.where, "'.{}' is not a swizzle of a {}-component value", e.text, count);
+      failCode("F1205", e.where, "'.{}' is not a swizzle of a {}-component value", e.text, count);
     out.push_back(k);
   }
   return out;
@@ -259,7 +261,7 @@ struct Effect::Impl {
       }
       case Expr::Kind::Name: {
         if (const Param* p = findParam(e.text)) return paramValue(*p);
-        failAt(e.where, "unknown parameter '{}'", e.text);
+        failCode("F1200", e.where, "unknown parameter '{}'", e.text);
       }
       case Expr::Kind::ParamRef: return eval(e.args[0]);
       case Expr::Kind::Preshader: {
@@ -274,18 +276,18 @@ struct Effect::Impl {
         for (const Expr& a : e.args) {
           Value x = eval(a);
           if (x.object || x.isNull || x.isString)
-            failAt(a.where, "expected a number in {}", e.kind == Expr::Kind::List ? "the list" : e.text + "(…)");
+            failCode("F1205", a.where, "expected a number in {}", e.kind == Expr::Kind::List ? "the list" : e.text + "(…)");
           v.numbers.insert(v.numbers.end(), x.numbers.begin(), x.numbers.end());
         }
         if (e.kind == Expr::Kind::Call) {
           ParameterDesc shape;
           if (!constructorShape(e.text, shape))
-            failAt(e.where, "'{}' is not a constructor (float4(…), float4x4(…), …); other functions in "
-                            "state values need the HLSL compiler", e.text);
+            failCode("F1205", e.where, "'{}' is not a constructor (float4(…), float4x4(…), …); other functions in "
+                                       "state values need the HLSL compiler", e.text);
           const size_t want = size_t(shape.rows * shape.columns);
           if (v.numbers.size() == 1 && want > 1) v.numbers.assign(want, v.numbers[0]);
           if (v.numbers.size() != want)
-            failAt(e.where, "{}(…) takes {} values, {} given", e.text, want, v.numbers.size());
+            failCode("F1205", e.where, "{}(…) takes {} values, {} given", e.text, want, v.numbers.size());
           v.cls = shape.cls == ParameterClass::Scalar ? ParameterClass::Vector : shape.cls;
           v.rows = shape.rows;
           v.columns = shape.columns;
@@ -305,7 +307,7 @@ struct Effect::Impl {
         Value a = numeric(e.args[0]);
         Value b = numeric(e.args[1]);
         if (a.numbers.size() != b.numbers.size() && a.numbers.size() != 1 && b.numbers.size() != 1)
-          failAt(e.where, "'{}' between values of {} and {} components", e.text, a.numbers.size(), b.numbers.size());
+          failCode("F1205", e.where, "'{}' between values of {} and {} components", e.text, a.numbers.size(), b.numbers.size());
         Value r = a.numbers.size() >= b.numbers.size() ? a : b;
         for (size_t i = 0; i < r.numbers.size(); ++i) {
           const double x = a.numbers[a.numbers.size() == 1 ? 0 : i];
@@ -338,7 +340,7 @@ struct Effect::Impl {
       case Expr::Kind::Index: {
         const Expr& base = e.args[0];
         const Value idx = numeric(e.args[1]);
-        if (idx.numbers.size() != 1) failAt(e.args[1].where, "an index must be a scalar");
+        if (idx.numbers.size() != 1) failCode("F1205", e.args[1].where, "an index must be a scalar");
         const int i = toInt(idx.numbers[0]);
         if (base.kind == Expr::Kind::Name) {
           if (const Param* p = findParam(base.text); p && p->decl.desc.elements > 0) {
@@ -361,12 +363,12 @@ struct Effect::Impl {
         return r;
       }
     }
-    failAt(e.where, "cannot evaluate this value");
+    failCode("F1205", e.where, "cannot evaluate this value");
   }
 
   Value numeric(const Expr& e) const {
     Value v = eval(e);
-    if (v.object || v.isNull || v.isString) failAt(e.where, "expected a number");
+    if (v.object || v.isNull || v.isString) failCode("F1205", e.where, "expected a number");
     return v;
   }
 
@@ -390,8 +392,8 @@ struct Effect::Impl {
     }
     const Value v = eval(s.value);
     if (v.object || v.isNull || v.isString || v.numbers.empty())
-      failAt(s.value.where, "'{}' takes a number{}", s.name,
-             vi.kind == d3d::ValueKind::Enum ? " or one of its keywords" : "");
+      failCode("F1203", s.value.where, "'{}' takes a number{}", s.name,
+                        vi.kind == d3d::ValueKind::Enum ? " or one of its keywords" : "");
     switch (vi.kind) {
       case d3d::ValueKind::Float: return floatBits(float(v.numbers[0]));
       case d3d::ValueKind::Color:
@@ -451,14 +453,14 @@ struct Effect::Impl {
     const Value v = eval(s.value);
     if (v.isNull) return nullptr;
     if (!v.object && v.source)
-      failAt(s.value.where, "'{}' takes a {} parameter; '{}' is a {}", s.name, what, v.source->decl.desc.name,
-             parameterTypeName(v.source->decl.desc.type));
-    if (!v.object) failAt(s.value.where, "'{}' takes a {} parameter", s.name, what);
+      failCode("F1203", s.value.where, "'{}' takes a {} parameter; '{}' is a {}", s.name, what, v.source->decl.desc.name,
+                        parameterTypeName(v.source->decl.desc.type));
+    if (!v.object) failCode("F1203", s.value.where, "'{}' takes a {} parameter", s.name, what);
     const ParameterType t = v.object->decl.desc.type;
     const bool ok = std::find(types.begin(), types.end(), t) != types.end();
     if (!ok)
-      failAt(s.value.where, "'{}' takes a {} parameter; '{}' is a {}", s.name, what, v.object->decl.desc.name,
-             parameterTypeName(t));
+      failCode("F1203", s.value.where, "'{}' takes a {} parameter; '{}' is a {}", s.name, what, v.object->decl.desc.name,
+                        parameterTypeName(t));
     return v.object;
   }
 
@@ -633,7 +635,7 @@ struct Effect::Impl {
       }
       case StateTarget::Transform: {
         const Value v = numeric(s.value);
-        if (v.numbers.size() != 16) failAt(s.value.where, "'{}' takes a 4x4 matrix, not {} values", s.name, v.numbers.size());
+        if (v.numbers.size() != 16) failCode("F1203", s.value.where, "'{}' takes a 4x4 matrix, not {} values", s.name, v.numbers.size());
         Matrix m;
         for (int r = 0; r < 4; ++r)
           for (int c = 0; c < 4; ++c) m.m[r][c] = float(v.numbers[size_t(r * 4 + c)]);
@@ -692,7 +694,7 @@ struct Effect::Impl {
         if (s.info.code && regs.size() > s.info.code) regs.resize(s.info.code);
         const int limit = s.info.target == StateTarget::VertexConstF ? kMaxVertexShaderConstF : kMaxPixelShaderConstF;
         if (i + int(regs.size()) > limit)
-          failAt(s.where, "'{}[{}]' writes {} registers, past c{}", s.name, i, regs.size(), limit - 1);
+          failCode("F1204", s.where, "'{}[{}]' writes {} registers, past c{}", s.name, i, regs.size(), limit - 1);
         if (regs.empty()) return;
         if (s.info.target == StateTarget::VertexConstF)
           dev.setVertexShaderConstantF(uint32_t(i), &regs[0].x, uint32_t(regs.size()));
@@ -707,7 +709,7 @@ struct Effect::Impl {
         for (double x : v.numbers) data.push_back(toInt(x));
         while (data.size() % 4) data.push_back(0);
         const uint32_t count = uint32_t(data.size() / 4);
-        if (i + int(count) > kMaxShaderConstI) failAt(s.where, "'{}[{}]' writes past i15", s.name, i);
+        if (i + int(count) > kMaxShaderConstI) failCode("F1204", s.where, "'{}[{}]' writes past i15", s.name, i);
         if (s.info.target == StateTarget::VertexConstI) dev.setVertexShaderConstantI(uint32_t(i), data.data(), count);
         else dev.setPixelShaderConstantI(uint32_t(i), data.data(), count);
         return;
@@ -717,7 +719,7 @@ struct Effect::Impl {
         const Value v = numeric(s.value);
         std::vector<int> data;
         for (double x : v.numbers) data.push_back(x != 0);
-        if (i + int(data.size()) > kMaxShaderConstB) failAt(s.where, "'{}[{}]' writes past b15", s.name, i);
+        if (i + int(data.size()) > kMaxShaderConstB) failCode("F1204", s.where, "'{}[{}]' writes past b15", s.name, i);
         if (data.empty()) return;
         if (s.info.target == StateTarget::VertexConstB)
           dev.setVertexShaderConstantB(uint32_t(i), data.data(), uint32_t(data.size()));
@@ -741,13 +743,20 @@ struct Effect::Impl {
     auto sh = std::make_shared<CompiledShader>();
     sh->vertex = vertex;
     if (e.decl) {
-      if (!vertex) failAt(e.decl->where, "{}: a decl block belongs to a vertex shader", what);
+      if (!vertex) failCode("F1207", e.decl->where, "{}: a decl block belongs to a vertex shader", what);
       sh->declaration = shader::parseVsDeclaration(e.decl->text, e.decl->file);
     }
-    shader::Shader parsed = shader::assemble(e.assembly.text, e.assembly.file);
+    // Every error of the block, with the assembler's codes at the effect file's lines.
+    DiagnosticSink asmErrors;
+    shader::Shader parsed = shader::assemble(e.assembly.text, e.assembly.file, asmErrors);
+    if (asmErrors.hasErrors()) {
+      EffectError error(asmErrors.all().front(), false);
+      error.also.assign(asmErrors.all().begin() + 1, asmErrors.all().end());
+      throw error;
+    }
     if ((parsed.version.type == shader::ShaderType::Vertex) != vertex)
-      failAt(e.assembly.where, "{}: expected a {} shader, the asm block is {}", what, vertex ? "vertex" : "pixel",
-             parsed.version.name());
+      failCode("F1207", e.assembly.where, "{}: expected a {} shader, the asm block is {}", what, vertex ? "vertex" : "pixel",
+                        parsed.version.name());
     sh->tokens = shader::encode(parsed);
     // The version's rules, reported at the instruction (the block's text keeps file positions).
     for (const shader::Diagnostic& d : shader::validate(parsed, validationCaps()))
@@ -766,11 +775,11 @@ struct Effect::Impl {
     try {
       decoded = shader::decode(e.tokens);
     } catch (const Error& err) {
-      failAt(e.where, "{}: the shader's bytecode cannot be read: {}", what, err.what());
+      failCode("F1207", e.where, "{}: the shader's bytecode cannot be read: {}", what, err.what());
     }
     if ((decoded.version.type == shader::ShaderType::Vertex) != vertex)
-      failAt(e.where, "{}: expected a {} shader, the bytecode is {}", what, vertex ? "vertex" : "pixel",
-             decoded.version.name());
+      failCode("F1207", e.where, "{}: expected a {} shader, the bytecode is {}", what, vertex ? "vertex" : "pixel",
+                        decoded.version.name());
     sh->constants = shader::readConstantTable(decoded);
     for (const shader::Instruction& ins : decoded.instructions) {
       if (ins.opcode != shader::Opcode::Comment) continue;
@@ -804,7 +813,7 @@ struct Effect::Impl {
   // of the effect (a literal, a vector constructor, a parameter's current value).
   std::string argumentText(const Expr& arg) const {
     const Value v = numeric(arg);
-    if (v.numbers.empty()) failAt(arg.where, "an argument of 'compile' must have a value");
+    if (v.numbers.empty()) failCode("F1205", arg.where, "an argument of 'compile' must have a value");
     std::string list;
     for (double x : v.numbers) list += fmt::format("{}{}", list.empty() ? "" : ", ", x);
     if (v.numbers.size() == 1) return list;
@@ -824,8 +833,8 @@ struct Effect::Impl {
     for (const Expr& a : e.args) opts.entryArguments.push_back(argumentText(a));
     const bool vertexProfile = e.profile.rfind("vs", 0) == 0;
     if (vertexProfile != vertex)
-      failAt(e.where, "{}: expected a {} shader profile, '{}' is a {} profile", what, vertex ? "vertex" : "pixel",
-             e.profile, vertexProfile ? "vertex" : "pixel");
+      failCode("F1207", e.where, "{}: expected a {} shader profile, '{}' is a {} profile", what, vertex ? "vertex" : "pixel",
+                        e.profile, vertexProfile ? "vertex" : "pixel");
     std::string key = e.profile + " " + e.entry + "(";
     for (const std::string& a : opts.entryArguments) key += a + ",";
     if (auto it = compiled.find(key); it != compiled.end()) return it->second;
@@ -861,12 +870,12 @@ struct Effect::Impl {
 
   int evalIndex(const StateAssignment& a, const StateInfo& info) const {
     if (!a.index) return 0;
-    if (!info.indexed) failAt(a.index->where, "'{}' takes no index", a.name);
+    if (!info.indexed) failCode("F1201", a.index->where, "'{}' takes no index", a.name);
     const Value v = numeric(*a.index);
-    if (v.numbers.size() != 1) failAt(a.index->where, "the index of '{}' must be a scalar", a.name);
+    if (v.numbers.size() != 1) failCode("F1202", a.index->where, "the index of '{}' must be a scalar", a.name);
     const double x = v.numbers[0];
     if (x < 0 || x > info.maxIndex || x != std::floor(x))
-      failAt(a.index->where, "'{}[{}]' is out of range (0 to {})", a.name, x, info.maxIndex);
+      failCode("F1202", a.index->where, "'{}[{}]' is out of range (0 to {})", a.name, x, info.maxIndex);
     return int(x);
   }
 
@@ -880,11 +889,11 @@ struct Effect::Impl {
       return s;
     }
     auto info = findState(a.name);
-    if (!info) failAt(a.where, "unknown state '{}'", a.name);
+    if (!info) failCode("F1201", a.where, "unknown state '{}'", a.name);
     if (inSamplerState && info->target != StateTarget::SamplerState)
-      failAt(a.where, "'{}' is not a sampler state (inside sampler_state: AddressU/V/W, BorderColor, "
-                      "Mag/Min/MipFilter, MipMapLodBias, MaxMipLevel, MaxAnisotropy, SRGBTexture, Texture)", a.name);
-    if (inSamplerState && a.index) failAt(a.index->where, "sampler_state states take no index");
+      failCode("F1201", a.where, "'{}' is not a sampler state (inside sampler_state: AddressU/V/W, BorderColor, "
+                                 "Mag/Min/MipFilter, MipMapLodBias, MaxMipLevel, MaxAnisotropy, SRGBTexture, Texture)", a.name);
+    if (inSamplerState && a.index) failCode("F1201", a.index->where, "sampler_state states take no index");
     s.info = *info;
     s.index = evalIndex(a, s.info);
     if (s.info.target == StateTarget::VertexShader || s.info.target == StateTarget::PixelShader) {
@@ -901,7 +910,7 @@ struct Effect::Impl {
       return s;
     }
     if (a.isSamplerState) {
-      if (s.info.target != StateTarget::Sampler) failAt(a.where, "'{}' cannot take a sampler_state", a.name);
+      if (s.info.target != StateTarget::Sampler) failCode("F1201", a.where, "'{}' cannot take a sampler_state", a.name);
       for (const StateAssignment& st : a.samplerState) s.samplerStates.push_back(bindState(st, true));
       s.samplerBlock = true;
       return s;
@@ -931,8 +940,8 @@ struct Effect::Impl {
         if (s.info.value.kind == d3d::ValueKind::Enum || s.info.value.kind == d3d::ValueKind::Flags) {
           const Expr& e = s.value;
           if (e.kind == Expr::Kind::Name && !findParam(e.text) && !d3d::parseEnum(s.info.value.enumKind, e.text))
-            failAt(e.where, "'{}' is not a value of '{}' (a {} keyword or a parameter)", e.text, s.name,
-                   enumKindName(s.info.value.enumKind));
+            failCode("F1203", e.where, "'{}' is not a value of '{}' (a {} keyword or a parameter)", e.text, s.name,
+                              enumKindName(s.info.value.enumKind));
         }
         stateDword(s);
         return;
@@ -980,7 +989,7 @@ struct Effect::Impl {
       if (auto s = pool->find(d.name)) {
         if (s->desc.type != d.type || s->desc.cls != d.cls || s->desc.rows != d.rows ||
             s->desc.columns != d.columns || s->desc.elements != d.elements)
-          failAt(p.decl.where, "shared parameter '{}' has another type in the pool", d.name);
+          failCode("F1206", p.decl.where, "shared parameter '{}' has another type in the pool", d.name);
         p.store = s;
         return;  // the pool's value stands; this effect's initializer is not applied again
       }
@@ -991,18 +1000,18 @@ struct Effect::Impl {
     if (p.decl.init) {
       const Value v = eval(*p.decl.init);
       if (d.type == ParameterType::String) {
-        if (!v.isString) failAt(p.decl.init->where, "'{}' is a string; expected \"text\"", d.name);
+        if (!v.isString) failCode("F1206", p.decl.init->where, "'{}' is a string; expected \"text\"", d.name);
         p.store->text = v.text;
       } else if (d.isNumeric()) {
         if (v.object || v.isNull || v.isString)
-          failAt(p.decl.init->where, "'{}' takes numbers as its initializer", d.name);
+          failCode("F1206", p.decl.init->where, "'{}' takes numbers as its initializer", d.name);
         std::vector<double> n = v.numbers;
         if (n.size() == 1 && p.store->raw.size() > 1 && !d.elements) n.assign(p.store->raw.size(), n[0]);
         if (n.size() != p.store->raw.size())
-          failAt(p.decl.init->where, "'{}' has {} values, its initializer {}", d.name, p.store->raw.size(), n.size());
+          failCode("F1206", p.decl.init->where, "'{}' has {} values, its initializer {}", d.name, p.store->raw.size(), n.size());
         for (size_t i = 0; i < n.size(); ++i) p.store->raw[i] = encodeScalar(d.type, n[i]);
       } else if (!v.isNull) {
-        failAt(p.decl.init->where, "'{}' ({}) cannot be initialized with a value", d.name, parameterTypeName(d.type));
+        failCode("F1206", p.decl.init->where, "'{}' ({}) cannot be initialized with a value", d.name, parameterTypeName(d.type));
       }
     }
     if ((d.flags & kParameterShared) && pool) pool->add(d.name, p.store);
@@ -1012,12 +1021,20 @@ struct Effect::Impl {
     files = ast.files;
     functions = ast.functions;
     preReleaseDialect = ast.preReleaseDialect;
+    // A declaration that cannot be made leaves its parameter out; every such error of
+    // the file is reported, one per line, in the Error thrown after the declarations.
+    std::string declarationErrors;
     for (ParameterDecl& decl : ast.parameters) {
-      if (findParam(decl.desc.name))
-        failAt(decl.where, "redefinition of parameter '{}'", decl.desc.name);
       Param p;
-      p.decl = std::move(decl);
-      initParameter(p, options.pool);
+      try {
+        if (findParam(decl.desc.name))
+          failCode("F1206", decl.where, "redefinition of parameter '{}'", decl.desc.name);
+        p.decl = std::move(decl);
+        initParameter(p, options.pool);
+      } catch (const Error& e) {
+        declarationErrors += (declarationErrors.empty() ? "" : "\n") + std::string(e.what());
+        continue;
+      }
       params.push_back(std::move(p));
       Param& q = params.back();
       // Shader and sampler parameters: a bad one is reported and left empty, so the
@@ -1028,7 +1045,7 @@ struct Effect::Impl {
           if (q.decl.shaderInit->kind == ShaderExpr::Kind::Reference) {
             const Value v = eval(q.decl.shaderInit->reference);
             if (!v.object || v.object->decl.desc.type != q.decl.desc.type)
-              failAt(q.decl.shaderInit->where, "'{}' must be initialized with a shader of its type", q.decl.desc.name);
+              failCode("F1207", q.decl.shaderInit->where, "'{}' must be initialized with a shader of its type", q.decl.desc.name);
             q.shader = v.object->shader;
           } else {
             q.shader = buildShader(*q.decl.shaderInit, vertex, q.decl.desc.name);
@@ -1038,8 +1055,10 @@ struct Effect::Impl {
           for (const StateAssignment& st : *q.decl.samplerInit) q.samplerStates.push_back(bindState(st, true));
       } catch (const Error& e) {
         diagnostics.push_back(diagnosticFrom(e));
+        reportFollowing(e);
       }
     }
+    if (!declarationErrors.empty()) throw Error(declarationErrors);
     for (TechniqueDecl& td : ast.techniques) {
       Technique t;
       t.desc.name = td.name;
@@ -1063,6 +1082,7 @@ struct Effect::Impl {
             if (t.desc.brokenReason.empty())
               t.desc.brokenReason = fmt::format("pass {}: {}", pd.name.empty() ? fmt::format("#{}", t.passes.size()) : pd.name, d.message);
             diagnostics.push_back(std::move(d));
+            reportFollowing(e);
           }
         }
         t.desc.passes.push_back(pass.desc);
@@ -1072,8 +1092,24 @@ struct Effect::Impl {
     }
   }
 
-  // Splits "file:line:col: error: message" back into its parts.
+  static EffectDiagnostic fromDiagnostic(const Diagnostic& from) {
+    EffectDiagnostic d;
+    d.where = from.where;
+    d.message = from.message;
+    d.error = from.severity == Severity::Error;
+    d.code = from.code;
+    return d;
+  }
+
+  // The errors an EffectError carries after its first one (the other errors of an asm block).
+  void reportFollowing(const Error& e) {
+    if (const auto* coded = dynamic_cast<const EffectError*>(&e))
+      for (const Diagnostic& d : coded->also) diagnostics.push_back(fromDiagnostic(d));
+  }
+
+  // A coded error's diagnostic, or "file:line:col: error: message" split back into its parts.
   static EffectDiagnostic diagnosticFrom(const Error& e) {
+    if (const auto* coded = dynamic_cast<const EffectError*>(&e)) return fromDiagnostic(coded->diagnostic);
     EffectDiagnostic d;
     std::string msg = e.what();
     const size_t pos = msg.find(": error: ");
@@ -1512,7 +1548,7 @@ struct FxlcCompiler {
       case Expr::Kind::Bool: return V{{literal(e.number)}};
       case Expr::Kind::Name: {
         if (const Param* p = m.findParam(e.text)) return param(e, *p, -1);
-        failAt(e.where, "unknown parameter '{}'", e.text);
+        failCode("F1200", e.where, "unknown parameter '{}'", e.text);
       }
       case Expr::Kind::ParamRef: return compile(e.args[0]);
       case Expr::Kind::List:
@@ -1527,7 +1563,7 @@ struct FxlcCompiler {
           if (!m.constructorShape(e.text, shape)) unsupported(e, "'" + e.text + "(…)'");
           const size_t want = size_t(shape.rows * shape.columns);
           if (v.c.size() == 1 && want > 1) v.c.assign(want, v.c[0]);
-          if (v.c.size() != want) failAt(e.where, "{}(…) takes {} values, {} given", e.text, want, v.c.size());
+          if (v.c.size() != want) failCode("F1205", e.where, "{}(…) takes {} values, {} given", e.text, want, v.c.size());
           v.cls = shape.cls == ParameterClass::Scalar ? ParameterClass::Vector : shape.cls;
           v.rows = shape.rows;
           v.columns = shape.columns;
@@ -1547,7 +1583,7 @@ struct FxlcCompiler {
         V a = compile(e.args[0]);
         V b = compile(e.args[1]);
         if (a.c.size() != b.c.size() && a.c.size() != 1 && b.c.size() != 1)
-          failAt(e.where, "'{}' between values of {} and {} components", e.text, a.c.size(), b.c.size());
+          failCode("F1205", e.where, "'{}' between values of {} and {} components", e.text, a.c.size(), b.c.size());
         V r = a.c.size() >= b.c.size() ? a : b;
         const std::string& o = e.text;
         for (size_t i = 0; i < r.c.size(); ++i) {
@@ -1575,7 +1611,7 @@ struct FxlcCompiler {
         const Expr& base = e.args[0];
         if (readsParameter(m, e.args[1])) unsupported(e.args[1], "an index that reads parameters");
         const Value idx = m.numeric(e.args[1]);
-        if (idx.numbers.size() != 1) failAt(e.args[1].where, "an index must be a scalar");
+        if (idx.numbers.size() != 1) failCode("F1205", e.args[1].where, "an index must be a scalar");
         const int i = toInt(idx.numbers[0]);
         if (base.kind == Expr::Kind::Name) {
           if (const Param* p = m.findParam(base.text); p && p->decl.desc.elements > 0) {

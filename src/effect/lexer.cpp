@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "effect_errors.h"
 #include "refx/core/text.h"
 
 namespace refx::effect::detail {
@@ -110,7 +111,7 @@ void Lexer::skipSpaceAndComments() {
       advance();
       advance();
       while (!(cur() == '*' && at(1) == '/')) {
-        if (cur() == '\0') failAt(start, "unterminated /* comment");
+        if (cur() == '\0') failLex("F1000", start, "unterminated /* comment");
         advance();
       }
       advance();
@@ -153,7 +154,7 @@ Token Lexer::next() {
       for (const Macro& m : macros_) {
         if (m.name != t.text) continue;
         if (++expansionDepth_ > kMaxExpansionDepth)
-          failAt(t.where, "macro '{}' expands into itself", t.text);
+          failLex("F1004", t.where, "macro '{}' expands into itself", t.text);
         std::vector<Token> body = m.body;
         for (Token& b : body) b.where = t.where;
         pending_.insert(pending_.begin(), body.begin(), body.end());
@@ -170,7 +171,7 @@ Token Lexer::lex() {
     skipSpaceAndComments();
     if (cur() != '\0') break;
     if (!conds_.empty() && stack_.size() == 1)
-      failAt(here(), "#if without #endif at the end of the file");
+      failLex("F1005", here(), "#if without #endif at the end of the file");
     if (stack_.size() == 1) {
       Token end;
       end.where = here();
@@ -203,7 +204,7 @@ Token Lexer::lex() {
         s += cur();
         advance();
       }
-      if (s.size() == 2) failAt(t.where, "expected hexadecimal digits after '0x'");
+      if (s.size() == 2) failLex("F1003", t.where, "expected hexadecimal digits after '0x'");
       t.number = double(std::strtoull(s.c_str() + 2, nullptr, 16));
     } else {
       while (std::isdigit(static_cast<unsigned char>(cur())) || cur() == '.') {
@@ -237,7 +238,7 @@ Token Lexer::lex() {
       if (cur() == 'f' || cur() == 'F' || cur() == 'h' || cur() == 'H') isFloat = true;
       advance();
     }
-    if (identChar(cur())) failAt(here(), "unexpected '{}' in the number '{}'", cur(), s);
+    if (identChar(cur())) failLex("F1003", here(), "unexpected '{}' in the number '{}'", cur(), s);
     t.kind = isFloat ? TokenKind::Float : TokenKind::Int;
     t.text = s;
     return t;
@@ -246,7 +247,7 @@ Token Lexer::lex() {
     advance();
     t.kind = TokenKind::String;
     while (cur() != '"') {
-      if (cur() == '\0' || cur() == '\n') failAt(t.where, "unterminated string");
+      if (cur() == '\0' || cur() == '\n') failLex("F1001", t.where, "unterminated string");
       if (cur() == '\\' && at(1) != '\0') {
         advance();
         const char e = cur();
@@ -274,8 +275,8 @@ Token Lexer::lex() {
   static constexpr std::string_view kOne = "{}[]()<>=;,:|+-*/.!~&^?%";
   if (kOne.find(c) == std::string_view::npos) {
     const unsigned char u = static_cast<unsigned char>(c);
-    if (u >= 0x20 && u < 0x7f) failAt(t.where, "unexpected character '{}'", c);
-    failAt(t.where, "unexpected byte 0x{:02X}", unsigned(u));
+    if (u >= 0x20 && u < 0x7f) failLex("F1002", t.where, "unexpected character '{}'", c);
+    failLex("F1002", t.where, "unexpected byte 0x{:02X}", unsigned(u));
   }
   t.text = std::string(1, c);
   advance();
@@ -284,7 +285,7 @@ Token Lexer::lex() {
 
 RawBlock Lexer::rawBlockAfterBrace(const SourceLocation& brace, bool semicolonComments) {
   if (hasPeeked_ || !pending_.empty())
-    failAt(brace, "a block's text cannot come from a macro");
+    failLex("F1011", brace, "a block's text cannot come from a macro");
   RawBlock b;
   b.file = stack_.back().file;
   b.where = brace;
@@ -295,7 +296,7 @@ RawBlock Lexer::rawBlockAfterBrace(const SourceLocation& brace, bool semicolonCo
   int depth = 1;
   for (;;) {
     const char c = cur();
-    if (c == '\0') failAt(brace, "expected '}}' to close the block opened here");
+    if (c == '\0') failLex("F1011", brace, "expected '}}' to close the block opened here");
     if (c == '/' && at(1) == '/') {
       while (cur() != '\0' && cur() != '\n') {
         b.text += cur();
@@ -306,7 +307,7 @@ RawBlock Lexer::rawBlockAfterBrace(const SourceLocation& brace, bool semicolonCo
     if (c == '/' && at(1) == '*') {
       const SourceLocation start = here();
       while (!(cur() == '*' && at(1) == '/')) {
-        if (cur() == '\0') failAt(start, "unterminated /* comment");
+        if (cur() == '\0') failLex("F1000", start, "unterminated /* comment");
         b.text += cur();
         advance();
       }
@@ -335,7 +336,7 @@ RawBlock Lexer::rawBlockAfterBrace(const SourceLocation& brace, bool semicolonCo
 
 void Lexer::include(std::string_view name, bool angled, const SourceLocation& where) {
   if (stack_.size() >= kMaxIncludeDepth)
-    failAt(where, "#include nested more than {} deep (an include cycle?)", kMaxIncludeDepth);
+    failLex("F1006", where, "#include nested more than {} deep (an include cycle?)", kMaxIncludeDepth);
   namespace fs = std::filesystem;
   std::vector<std::string> candidates;
   const std::string self = stack_.back().file;
@@ -343,7 +344,7 @@ void Lexer::include(std::string_view name, bool angled, const SourceLocation& wh
   for (const std::string& dir : includeDirs_) candidates.push_back((fs::path(dir) / std::string(name)).string());
   for (const std::string& path : candidates) {
     for (const Source& open : stack_)
-      if (open.file == path) failAt(where, "#include cycle: '{}' includes itself", path);
+      if (open.file == path) failLex("F1006", where, "#include cycle: '{}' includes itself", path);
     auto text = readFile(path);
     if (!text) continue;
     files_.push_back(path);
@@ -351,7 +352,7 @@ void Lexer::include(std::string_view name, bool angled, const SourceLocation& wh
     atLineStart_ = true;
     return;
   }
-  failAt(where, "cannot open include file '{}'", name);
+  failLex("F1006", where, "cannot open include file '{}'", name);
 }
 
 bool Lexer::evalCondition(std::string_view expr, const SourceLocation& where) {
@@ -405,12 +406,12 @@ bool Lexer::evalCondition(std::string_view expr, const SourceLocation& where) {
       if (eat("-")) return -primary();
       if (eat("(")) {
         long long v = orExpr();
-        if (!eat(")")) failAt(where, "expected ')' in the #if expression");
+        if (!eat(")")) failLex("F1007", where, "expected ')' in the #if expression");
         return v;
       }
       size_t e = p;
       while (e < s.size() && std::isalnum(static_cast<unsigned char>(s[e]))) ++e;
-      if (e == p) failAt(where, "expected a number in the #if expression");
+      if (e == p) failLex("F1007", where, "expected a number in the #if expression");
       long long v = std::strtoll(std::string(s.substr(p, e - p)).c_str(), nullptr, 0);
       p = e;
       return v;
@@ -440,7 +441,7 @@ bool Lexer::evalCondition(std::string_view expr, const SourceLocation& where) {
   } ev{text, 0, where};
   const long long v = ev.orExpr();
   ev.ws();
-  if (ev.p != text.size()) failAt(where, "unexpected '{}' in the #if expression", text.substr(ev.p));
+  if (ev.p != text.size()) failLex("F1007", where, "unexpected '{}' in the #if expression", text.substr(ev.p));
   return v != 0;
 }
 
@@ -468,28 +469,28 @@ void Lexer::directive() {
     }
     conds_.push_back({on && value, on && value, on});
   } else if (name == "elif") {
-    if (conds_.empty()) failAt(where, "#elif without #if");
+    if (conds_.empty()) failLex("F1005", where, "#elif without #if");
     Cond& c = conds_.back();
     const bool value = c.parentOn && !c.taken && evalCondition(rest, where);
     c.active = value;
     c.taken |= value;
   } else if (name == "else") {
-    if (conds_.empty()) failAt(where, "#else without #if");
+    if (conds_.empty()) failLex("F1005", where, "#else without #if");
     Cond& c = conds_.back();
     c.active = c.parentOn && !c.taken;
     c.taken = true;
   } else if (name == "endif") {
-    if (conds_.empty()) failAt(where, "#endif without #if");
+    if (conds_.empty()) failLex("F1005", where, "#endif without #if");
     conds_.pop_back();
   } else if (!on) {
     // Other directives in a skipped region are ignored.
   } else if (name == "define") {
     size_t i = 0;
     while (i < rest.size() && identChar(rest[i])) ++i;
-    if (i == 0) failAt(where, "expected a macro name after #define");
+    if (i == 0) failLex("F1008", where, "expected a macro name after #define");
     Macro m{rest.substr(0, i), {}};
     if (i < rest.size() && rest[i] == '(')
-      failAt(where, "function-like macro '{}': effect files take object-like #defines only", m.name);
+      failLex("F1008", where, "function-like macro '{}': effect files take object-like #defines only", m.name);
     Lexer sub(std::string_view(rest).substr(i), where.file, {}, {});
     for (Token t = sub.next(); t.kind != TokenKind::End; t = sub.next()) {
       t.where = where;
@@ -505,22 +506,22 @@ void Lexer::directive() {
     } else if (rest.size() >= 2 && rest.front() == '<' && rest.back() == '>') {
       include(std::string_view(rest).substr(1, rest.size() - 2), true, where);
     } else {
-      failAt(where, "expected \"file\" or <file> after #include");
+      failLex("F1010", where, "expected \"file\" or <file> after #include");
     }
   } else if (name == "error") {
-    failAt(where, "#error {}", rest);
+    failLex("F1009", where, "#error {}", rest);
   } else if (name == "line") {
     Source& s = stack_.back();
     char* end = nullptr;
     const long line = std::strtol(rest.c_str(), &end, 10);
-    if (end == rest.c_str() || line <= 0) failAt(where, "expected a line number after #line");
+    if (end == rest.c_str() || line <= 0) failLex("F1010", where, "expected a line number after #line");
     std::string_view file = trim(std::string_view(end));
     if (file.size() >= 2 && file.front() == '"') s.file = std::string(file.substr(1, file.size() - 2));
     s.line = int(line) - 1;  // the newline that ends this directive makes it `line`
   } else if (name == "pragma") {
     // #pragma pack_matrix / warning: no effect on effect-level parsing.
   } else {
-    failAt(where, "unknown preprocessor directive '#{}'", name);
+    failLex("F1010", where, "unknown preprocessor directive '#{}'", name);
   }
   atLineStart_ = true;
 }

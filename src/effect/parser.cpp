@@ -9,6 +9,7 @@
 #include <set>
 
 #include "ast.h"
+#include "effect_errors.h"
 #include "refx/core/text.h"
 
 namespace refx::effect::detail {
@@ -16,6 +17,12 @@ namespace refx::effect::detail {
 namespace {
 
 constexpr int kMaxExprDepth = 128;
+// A file with more errors than this reports these and stops.
+constexpr int kMaxErrors = 100;
+
+// Ends parsing: the error limit, the end of the file inside a construct, or an error of
+// the token stream itself.
+struct StopParsing {};
 
 }  // namespace
 
@@ -77,39 +84,80 @@ std::optional<ParameterType> objectType(std::string_view name) {
 
 class Parser {
  public:
-  Parser(std::string_view text, const std::string& file, const EffectOptions& o)
-      : lex_(text, file, o.includeDirs, o.defines) {}
+  Parser(std::string_view text, const std::string& file, const EffectOptions& o, DiagnosticSink& sink)
+      : lex_(text, file, o.includeDirs, o.defines), sink_(sink) {}
 
+  // Every error is reported: after one, parsing goes on after the construct it is in
+  // (the state assignment, pass, technique or declaration).
   EffectAst run() {
     EffectAst ast;
-    for (;;) {
-      const Token& t = lex_.peek();
-      if (t.kind == TokenKind::End) break;
-      if (t.is(";")) {
-        lex_.next();
-      } else if (t.isIdent("technique")) {
-        ast.techniques.push_back(technique());
-      } else if (t.isIdent("technique10") || t.isIdent("technique11")) {
-        failAt(t.where, "'{}' is a Direct3D 10/11 effect construct; D3D9 effects use 'technique'", t.text);
-      } else if (t.isIdent("fx")) {  // no type is called fx: the `fx.2.0` header
-        preReleaseHeader(ast);
-      } else if (t.text == "struct") {
-        skipStruct();
-      } else if (t.text == "typedef") {
-        typedefDeclaration();
-      } else {
-        topLevelDeclaration(ast);
+    try {
+      for (;;) {
+        try {
+          const Token& t = lex_.peek();
+          if (t.kind == TokenKind::End) break;
+          if (t.is(";")) {
+            lex_.next();
+          } else if (t.isIdent("technique")) {
+            ast.techniques.push_back(technique());
+          } else if (t.isIdent("technique10") || t.isIdent("technique11")) {
+            failCode("F1102", t.where, "'{}' is a Direct3D 10/11 effect construct; D3D9 effects use 'technique'", t.text);
+          } else if (t.isIdent("fx")) {  // no type is called fx: the `fx.2.0` header
+            preReleaseHeader(ast);
+          } else if (t.text == "struct") {
+            skipStruct();
+          } else if (t.text == "typedef") {
+            typedefDeclaration();
+          } else {
+            topLevelDeclaration(ast);
+          }
+        } catch (const EffectError& e) {
+          recover(e, true);
+        }
       }
+    } catch (const StopParsing&) {
     }
     ast.files = lex_.files();
     return ast;
   }
 
  private:
+  // Reports the error and skips the rest of the construct it is in.
+  void recover(const EffectError& e, bool topLevel) {
+    sink_.report(e.diagnostic);
+    if (e.fatal || sink_.errorCount() >= kMaxErrors) throw StopParsing{};
+    skipConstruct(topLevel);
+    if (!topLevel && lex_.peek().kind == TokenKind::End) throw StopParsing{};  // the end, inside a block
+  }
+
+  // A ';' ends the construct (and is consumed), as does a '{ … }' block skipped whole; a
+  // '}' that closes the enclosing block ends it and is left to that block (at the top
+  // level, where no block encloses, a stray '}' is skipped).
+  void skipConstruct(bool topLevel) {
+    int depth = 0;
+    for (;;) {
+      const Token& t = lex_.peek();
+      if (t.kind == TokenKind::End) return;
+      if (t.is("}")) {
+        if (depth == 0 && !topLevel) return;
+        lex_.next();
+        if (depth <= 1) return;
+        --depth;
+        continue;
+      }
+      if (t.is("{")) ++depth;
+      const bool end = depth == 0 && t.is(";");
+      lex_.next();
+      if (end) return;
+    }
+  }
+
+  // The parse functions below check the next token before taking it, so that the token
+  // an error points at (a '}' or ';' in the wrong place) is still there for recovery.
   Token expect(std::string_view punct, std::string_view what) {
-    Token t = lex_.next();
-    if (!t.is(punct)) failAt(t.where, "expected '{}' {}, found {}", punct, what, describe(t));
-    return t;
+    const Token& t = lex_.peek();
+    if (!t.is(punct)) failCode("F1100", t.where, "expected '{}' {}, found {}", punct, what, describe(t));
+    return lex_.next();
   }
 
   static std::string describe(const Token& t) {
@@ -121,9 +169,9 @@ class Parser {
   }
 
   Token expectIdent(std::string_view what) {
-    Token t = lex_.next();
-    if (t.kind != TokenKind::Ident) failAt(t.where, "expected {}, found {}", what, describe(t));
-    return t;
+    const Token& t = lex_.peek();
+    if (t.kind != TokenKind::Ident) failCode("F1100", t.where, "expected {}, found {}", what, describe(t));
+    return lex_.next();
   }
 
   bool accept(std::string_view punct) {
@@ -135,7 +183,7 @@ class Parser {
   void skipPast(std::string_view punct) {
     for (;;) {
       Token t = lex_.next();
-      if (t.kind == TokenKind::End) failAt(t.where, "expected '{}' before the end of the file", punct);
+      if (t.kind == TokenKind::End) failCode("F1100", t.where, "expected '{}' before the end of the file", punct);
       if (t.is(punct)) return;
     }
   }
@@ -146,7 +194,7 @@ class Parser {
     int depth = 1;
     while (depth > 0) {
       Token t = lex_.next();
-      if (t.kind == TokenKind::End) failAt(open.where, "expected '}}' to close the '{{' opened here");
+      if (t.kind == TokenKind::End) failCode("F1100", open.where, "expected '}}' to close the '{{' opened here");
       if (t.is("{")) ++depth;
       if (t.is("}")) --depth;
     }
@@ -231,7 +279,7 @@ class Parser {
         Token base = expectIdent("a scalar type in vector<…>/matrix<…>");
         auto scalar = numericTypeName(base.text);
         if (!scalar || scalar->cls != ParameterClass::Scalar)
-          failAt(base.where, "expected a scalar type (float, int, bool, half), found '{}'", base.text);
+          failCode("F1100", base.where, "expected a scalar type (float, int, bool, half), found '{}'", base.text);
         d.type = scalar->type;
         expect(",", "after the scalar type");
         d.rows = isMatrix ? dimension() : 1;
@@ -275,10 +323,10 @@ class Parser {
   }
 
   int dimension() {
-    Token n = lex_.next();
+    const Token& n = lex_.peek();
     if (n.kind != TokenKind::Int || n.number < 1 || n.number > 4)
-      failAt(n.where, "expected a dimension 1 to 4, found {}", describe(n));
-    return int(n.number);
+      failCode("F1100", n.where, "expected a dimension 1 to 4, found {}", describe(n));
+    return int(lex_.next().number);
   }
 
   void topLevelDeclaration(EffectAst& ast) {
@@ -293,17 +341,17 @@ class Parser {
         ast.functions.push_back(name.text);
         return;
       }
-      failAt(typeTok.where, "'{}' is a parameter of struct type '{}'; struct parameters are not supported, "
-                            "declare its members as parameters", name.text, typeTok.text);
+      failCode("F1103", typeTok.where, "'{}' is a parameter of struct type '{}'; struct parameters are not supported, "
+                                       "declare its members as parameters", name.text, typeTok.text);
     }
     if (!baseType) {
       if (typeTok.kind == TokenKind::Ident && lex_.peek().kind == TokenKind::Ident) {
         // A user type (struct) or an unknown word: `Name name …`.
-        failAt(typeTok.where, "unknown type '{}' (expected a parameter type: float, float4, float4x4, "
-                              "int, bool, DWORD, vector, matrix, string, texture, sampler, vertexshader, "
-                              "pixelshader …)", typeTok.text);
+        failCode("F1101", typeTok.where, "unknown type '{}' (expected a parameter type: float, float4, float4x4, "
+                                         "int, bool, DWORD, vector, matrix, string, texture, sampler, vertexshader, "
+                                         "pixelshader …)", typeTok.text);
       }
-      failAt(typeTok.where, "expected a parameter declaration or 'technique', found {}", describe(typeTok));
+      failCode("F1100", typeTok.where, "expected a parameter declaration or 'technique', found {}", describe(typeTok));
     }
     if (mods.rowMajor && baseType->cls == ParameterClass::MatrixColumns) baseType->cls = ParameterClass::MatrixRows;
     if (mods.shared) baseType->flags |= kParameterShared;
@@ -320,10 +368,10 @@ class Parser {
       p.isStatic = mods.isStatic;
       p.where = name.where;
       if (accept("[")) {
-        Token n = lex_.next();
+        const Token& n = lex_.peek();
         if (n.kind != TokenKind::Int || n.number < 1 || n.number > 65536)
-          failAt(n.where, "expected an array size, found {}", describe(n));
-        p.desc.elements = int(n.number);
+          failCode("F1100", n.where, "expected an array size, found {}", describe(n));
+        p.desc.elements = int(lex_.next().number);
         expect("]", "after the array size");
       }
       if (accept(":")) {
@@ -349,7 +397,7 @@ class Parser {
     int depth = 1;
     while (depth > 0) {
       Token t = lex_.next();
-      if (t.kind == TokenKind::End) failAt(t.where, "expected ')' to close the parameter list");
+      if (t.kind == TokenKind::End) failCode("F1100", t.where, "expected ')' to close the parameter list");
       if (t.is("(")) ++depth;
       if (t.is(")")) --depth;
     }
@@ -374,9 +422,7 @@ class Parser {
 
   std::vector<StateAssignment> samplerStateBlock() {
     expect("{", "after sampler_state");
-    std::vector<StateAssignment> states;
-    while (!accept("}")) states.push_back(stateAssignment());
-    return states;
+    return stateBlock();
   }
 
   // `< type name = value; … >`
@@ -384,26 +430,36 @@ class Parser {
     expect("<", "to open the annotations");
     std::vector<Annotation> list;
     while (!accept(">")) {
-      Annotation a;
-      const Token typeTok = lex_.peek();
-      auto t = type();
-      if (!t) failAt(typeTok.where, "expected an annotation type (string, int, float, bool …), found {}",
-                     describe(typeTok));
-      a.desc = *t;
-      a.desc.name = expectIdent("an annotation name").text;
-      expect("=", "after the annotation name");
-      if (a.desc.type == ParameterType::String) {
-        Token s = lex_.next();
-        if (s.kind != TokenKind::String) failAt(s.where, "expected a string, found {}", describe(s));
-        a.text = s.text;
-      } else {
-        const Expr e = expression();
-        constantNumbers(e, a.numbers);
+      try {
+        list.push_back(annotation());
+      } catch (const EffectError& e) {
+        recover(e, false);
+        if (lex_.peek().is("}")) break;  // the '>' is missing: the enclosing block reports it
       }
-      expect(";", "after the annotation");
-      list.push_back(std::move(a));
     }
     return list;
+  }
+
+  // `type name = value;`
+  Annotation annotation() {
+    Annotation a;
+    const Token typeTok = lex_.peek();
+    auto t = type();
+    if (!t) failCode("F1100", typeTok.where, "expected an annotation type (string, int, float, bool …), found {}",
+                              describe(typeTok));
+    a.desc = *t;
+    a.desc.name = expectIdent("an annotation name").text;
+    expect("=", "after the annotation name");
+    if (a.desc.type == ParameterType::String) {
+      const Token& s = lex_.peek();
+      if (s.kind != TokenKind::String) failCode("F1100", s.where, "expected a string, found {}", describe(s));
+      a.text = lex_.next().text;
+    } else {
+      const Expr e = expression();
+      constantNumbers(e, a.numbers);
+    }
+    expect(";", "after the annotation");
+    return a;
   }
 
   // Numbers of a constant expression (annotations): literals, lists, constructors, negation.
@@ -423,7 +479,7 @@ class Parser {
         break;
       default: break;
     }
-    failAt(e.where, "an annotation value must be a constant");
+    failCode("F1104", e.where, "an annotation value must be a constant");
   }
 
   TechniqueDecl technique() {
@@ -433,27 +489,49 @@ class Parser {
     if (lex_.peek().is("<")) t.annotations = annotations();
     expect("{", "to open the technique");
     while (!accept("}")) {
-      Token p = lex_.next();
-      if (!p.isIdent("pass"))
-        failAt(p.where, "expected 'pass' or '}}' in technique '{}', found {}", t.name, describe(p));
-      PassDecl pass;
-      pass.where = p.where;
-      if (lex_.peek().kind == TokenKind::Ident) pass.name = lex_.next().text;
-      if (lex_.peek().is("<")) pass.annotations = annotations();
-      expect("{", "to open the pass");
-      while (!accept("}")) pass.states.push_back(stateAssignment());
-      t.passes.push_back(std::move(pass));
+      try {
+        t.passes.push_back(pass(t.name));
+      } catch (const EffectError& e) {
+        recover(e, false);
+      }
     }
     return t;
   }
 
+  PassDecl pass(const std::string& techniqueName) {
+    const Token& p = lex_.peek();
+    if (!p.isIdent("pass"))
+      failCode("F1100", p.where, "expected 'pass' or '}}' in technique '{}', found {}", techniqueName, describe(p));
+    PassDecl pass;
+    pass.where = lex_.next().where;
+    if (lex_.peek().kind == TokenKind::Ident) pass.name = lex_.next().text;
+    if (lex_.peek().is("<")) pass.annotations = annotations();
+    expect("{", "to open the pass");
+    pass.states = stateBlock();
+    return pass;
+  }
+
+  // State assignments up to the closing '}' (consumed); a bad one is reported and skipped.
+  std::vector<StateAssignment> stateBlock() {
+    std::vector<StateAssignment> states;
+    while (!accept("}")) {
+      try {
+        states.push_back(stateAssignment());
+      } catch (const EffectError& e) {
+        recover(e, false);
+      }
+    }
+    return states;
+  }
+
   StateAssignment stateAssignment() {
     StateAssignment s;
-    Token name = lex_.next();
+    const Token& name = lex_.peek();
     if (name.kind != TokenKind::Ident)
-      failAt(name.where, "expected a state name or '}}', found {}", describe(name));
+      failCode("F1100", name.where, "expected a state name or '}}', found {}", describe(name));
     s.name = name.text;
     s.where = name.where;
+    lex_.next();
     if (accept("[")) {
       s.index = expression();
       expect("]", "after the state index");
@@ -485,8 +563,9 @@ class Parser {
       lex_.next();
       Token brace = expect("{", "after decl");
       sh.decl = lex_.rawBlockAfterBrace(brace.where, false);
-      Token a = lex_.next();
-      if (!a.isIdent("asm")) failAt(a.where, "expected 'asm {{' after the decl block, found {}", describe(a));
+      const Token& a = lex_.peek();
+      if (!a.isIdent("asm")) failCode("F1100", a.where, "expected 'asm {{' after the decl block, found {}", describe(a));
+      lex_.next();
     }
     if (sh.decl || lex_.peek().isIdent("asm")) {
       if (!sh.decl) lex_.next();
@@ -550,7 +629,7 @@ class Parser {
   }
 
   Expr unary() {
-    if (++depth_ > kMaxExprDepth) failAt(lex_.peek().where, "expression nested too deeply");
+    if (++depth_ > kMaxExprDepth) failCode("F1105", lex_.peek().where, "expression nested too deeply");
     const Token& t = lex_.peek();
     if (t.is("-") || t.is("!") || t.is("~") || t.is("+")) {
       Token op = lex_.next();
@@ -593,6 +672,11 @@ class Parser {
   }
 
   Expr primary() {
+    {
+      const Token& p = lex_.peek();
+      if (p.kind == TokenKind::End || (p.kind == TokenKind::Punct && !p.is("(") && !p.is("{") && !p.is("<")))
+        failCode("F1100", p.where, "expected a value, found {}", describe(p));
+    }
     Token t = lex_.next();
     Expr e;
     e.where = t.where;
@@ -653,7 +737,7 @@ class Parser {
           Expr inner = postfix(primary());
           --angleDepth_;
           if (inner.kind != Expr::Kind::Name && inner.kind != Expr::Kind::Index && inner.kind != Expr::Kind::Member)
-            failAt(t.where, "expected a parameter name inside '<…>'");
+            failCode("F1100", t.where, "expected a parameter name inside '<…>'");
           expect(">", "to close the parameter reference");
           e.kind = Expr::Kind::ParamRef;
           e.args.push_back(std::move(inner));
@@ -662,10 +746,11 @@ class Parser {
         break;
       case TokenKind::End: break;
     }
-    failAt(t.where, "expected a value, found {}", describe(t));
+    failCode("F1100", t.where, "expected a value, found {}", describe(t));
   }
 
   Lexer lex_;
+  DiagnosticSink& sink_;
   bool preRelease_ = false;
   std::set<std::string> userTypes_;                    // struct names and typedefs of them
   std::map<std::string, ParameterDesc> aliases_;        // typedefs of parameter types
@@ -676,7 +761,14 @@ class Parser {
 }  // namespace
 
 EffectAst parseEffect(std::string_view text, const std::string& fileName, const EffectOptions& options) {
-  return Parser(text, fileName, options).run();
+  DiagnosticSink sink;
+  EffectAst ast = Parser(text, fileName, options, sink).run();
+  if (sink.hasErrors()) {
+    std::string message;
+    for (const Diagnostic& d : sink.all()) message += (message.empty() ? "" : "\n") + d.str();
+    throw Error(std::move(message));
+  }
+  return ast;
 }
 
 }  // namespace refx::effect::detail

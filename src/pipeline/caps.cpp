@@ -37,31 +37,6 @@ struct FlagSet {
   bool countInLowBits = false;  // FVFCaps: the low 16 bits are a number
 };
 
-// D3DTEXOPCAPS_x is bit (D3DTOP_x - 1); the names are the D3DTOP names.
-const FlagSet& textureOpCapsSet() {
-  static const FlagSet set = [] {
-    FlagSet s{"D3DTEXOPCAPS_", {}};
-    for (uint32_t op = d3d::TOP_DISABLE; op <= d3d::TOP_LERP; ++op)
-      s.flags.push_back({std::string(d3d::enumName(d3d::EnumKind::TextureOp, op)), 1u << (op - 1)});
-    return s;
-  }();
-  return set;
-}
-
-// D3DPBLENDCAPS_x is bit (D3DBLEND_x - 1) for ZERO..BLENDFACTOR; BLENDFACTOR covers
-// INVBLENDFACTOR too; bits 14/15 are the D3D9Ex dual-source factors.
-const FlagSet& blendCapsSet() {
-  static const FlagSet set = [] {
-    FlagSet s{"D3DPBLENDCAPS_", {}};
-    for (uint32_t b = d3d::BLEND_ZERO; b <= d3d::BLEND_BLENDFACTOR; ++b)
-      s.flags.push_back({std::string(d3d::enumName(d3d::EnumKind::Blend, b)), 1u << (b - 1)});
-    s.flags.push_back({"SRCCOLOR2", 0x4000});
-    s.flags.push_back({"INVSRCCOLOR2", 0x8000});
-    return s;
-  }();
-  return set;
-}
-
 // A field whose names and bits are in caps_flags.h (shared with ValidateDevice).
 FlagSet flagSet(std::string_view prefix, std::span<const caps_flags::FlagBit> table) {
   FlagSet s{prefix, {}};
@@ -73,6 +48,8 @@ const FlagSet kTextureCaps = flagSet("D3DPTEXTURECAPS_", caps_flags::kTextureCap
 const FlagSet kFilterCaps = flagSet("D3DPTFILTERCAPS_", caps_flags::kFilterCaps);
 const FlagSet kAddressCaps = flagSet("D3DPTADDRESSCAPS_", caps_flags::kAddressCaps);
 const FlagSet kMiscCaps = flagSet("D3DPMISCCAPS_", caps_flags::kMiscCaps);
+const FlagSet kTextureOpCaps = flagSet("D3DTEXOPCAPS_", caps_flags::kTextureOpCaps);
+const FlagSet kBlendCaps = flagSet("D3DPBLENDCAPS_", caps_flags::kBlendCaps);
 const FlagSet kRasterCaps = flagSet("D3DPRASTERCAPS_", caps_flags::kRasterCaps);
 
 const FlagSet kDevCaps{"D3DDEVCAPS_", {
@@ -105,8 +82,8 @@ struct Field {
   uint32_t minValue = 0, maxValue = 0;  // for Uint
 };
 
-const FlagSet* textureOpCapsPtr() { return &textureOpCapsSet(); }
-const FlagSet* blendCapsPtr() { return &blendCapsSet(); }
+const FlagSet* textureOpCapsPtr() { return &kTextureOpCaps; }
+const FlagSet* blendCapsPtr() { return &kBlendCaps; }
 const FlagSet* textureCapsPtr() { return &kTextureCaps; }
 const FlagSet* filterCapsPtr() { return &kFilterCaps; }
 const FlagSet* addressCapsPtr() { return &kAddressCaps; }

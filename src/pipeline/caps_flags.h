@@ -49,11 +49,39 @@ inline constexpr FlagBit kRasterCaps[] = {
     {"SLOPESCALEDEPTHBIAS", 0x2000000}, {"DEPTHBIAS", 0x4000000},
     {"MULTISAMPLE_TOGGLE", 0x8000000}};
 
+// D3DTEXOPCAPS_*: named as the D3DTOP each bit allows (d3d9caps.h).
+inline constexpr FlagBit kTextureOpCaps[] = {
+    {"DISABLE", 0x1}, {"SELECTARG1", 0x2}, {"SELECTARG2", 0x4}, {"MODULATE", 0x8},
+    {"MODULATE2X", 0x10}, {"MODULATE4X", 0x20}, {"ADD", 0x40}, {"ADDSIGNED", 0x80},
+    {"ADDSIGNED2X", 0x100}, {"SUBTRACT", 0x200}, {"ADDSMOOTH", 0x400},
+    {"BLENDDIFFUSEALPHA", 0x800}, {"BLENDTEXTUREALPHA", 0x1000}, {"BLENDFACTORALPHA", 0x2000},
+    {"BLENDTEXTUREALPHAPM", 0x4000}, {"BLENDCURRENTALPHA", 0x8000}, {"PREMODULATE", 0x10000},
+    {"MODULATEALPHA_ADDCOLOR", 0x20000}, {"MODULATECOLOR_ADDALPHA", 0x40000},
+    {"MODULATEINVALPHA_ADDCOLOR", 0x80000}, {"MODULATEINVCOLOR_ADDALPHA", 0x100000},
+    {"BUMPENVMAP", 0x200000}, {"BUMPENVMAPLUMINANCE", 0x400000}, {"DOTPRODUCT3", 0x800000},
+    {"MULTIPLYADD", 0x1000000}, {"LERP", 0x2000000}};
+
+// D3DPBLENDCAPS_*: named as the D3DBLEND each bit allows; BLENDFACTOR covers
+// INVBLENDFACTOR too, SRCCOLOR2/INVSRCCOLOR2 are the D3D9Ex dual-source factors.
+inline constexpr FlagBit kBlendCaps[] = {
+    {"ZERO", 0x1}, {"ONE", 0x2}, {"SRCCOLOR", 0x4}, {"INVSRCCOLOR", 0x8},
+    {"SRCALPHA", 0x10}, {"INVSRCALPHA", 0x20}, {"DESTALPHA", 0x40}, {"INVDESTALPHA", 0x80},
+    {"DESTCOLOR", 0x100}, {"INVDESTCOLOR", 0x200}, {"SRCALPHASAT", 0x400},
+    {"BOTHSRCALPHA", 0x800}, {"BOTHINVSRCALPHA", 0x1000}, {"BLENDFACTOR", 0x2000},
+    {"SRCCOLOR2", 0x4000}, {"INVSRCCOLOR2", 0x8000}};
+
 // The flag `name` of a table; a name not in it does not compile where constant-evaluated.
 consteval FlagBit flag(std::span<const FlagBit> table, std::string_view name) {
   for (const FlagBit& f : table)
     if (f.name == name) return f;
   throw "unknown caps flag";
+}
+
+// The bit of flag `name` at run time; 0 when the table has no such flag.
+constexpr uint32_t bitOf(std::span<const FlagBit> table, std::string_view name) {
+  for (const FlagBit& f : table)
+    if (f.name == name) return f.bit;
+  return 0;
 }
 
 }  // namespace refx::caps_flags

@@ -2,6 +2,8 @@
 // texture stage documentation (reference/fixed-function.md §1-§3, §6).
 #include "pipeline/ff_pixel.h"
 
+#include "pipeline/texture_op_use.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -38,6 +40,7 @@ struct Recipe {
   Op op;
   int8_t shift;
   std::array<Operand, 3> src;
+  bool colorOnly = false;  // D3D9 accepts the op as COLOROP only
 };
 
 using O = Operand;
@@ -59,10 +62,10 @@ constexpr Recipe kRecipes[] = {
     {TOP_BLENDTEXTUREALPHAPM, Op::Mad, 0, {O::A2, O::TextureAlphaComp, O::A1}},  // A1 + A2*(1-At)
     {TOP_BLENDCURRENTALPHA, Op::Lrp, 0, {O::CurrentAlpha, O::A1, O::A2}},
     {TOP_PREMODULATE, Op::Mov, 0, {O::A1}},  // A1; next stage's CURRENT *= its texture
-    {TOP_MODULATEALPHA_ADDCOLOR, Op::Mad, 0, {O::A1Alpha, O::A2, O::A1}},         // A1 + A1.a*A2
-    {TOP_MODULATECOLOR_ADDALPHA, Op::Mad, 0, {O::A1, O::A2, O::A1Alpha}},         // A1*A2 + A1.a
-    {TOP_MODULATEINVALPHA_ADDCOLOR, Op::Mad, 0, {O::A1AlphaComp, O::A2, O::A1}},  // A1 + (1-A1.a)*A2
-    {TOP_MODULATEINVCOLOR_ADDALPHA, Op::Mad, 0, {O::A1Comp, O::A2, O::A1Alpha}},  // (1-A1)*A2 + A1.a
+    {TOP_MODULATEALPHA_ADDCOLOR, Op::Mad, 0, {O::A1Alpha, O::A2, O::A1}, true},         // A1 + A1.a*A2
+    {TOP_MODULATECOLOR_ADDALPHA, Op::Mad, 0, {O::A1, O::A2, O::A1Alpha}, true},         // A1*A2 + A1.a
+    {TOP_MODULATEINVALPHA_ADDCOLOR, Op::Mad, 0, {O::A1AlphaComp, O::A2, O::A1}, true},  // A1 + (1-A1.a)*A2
+    {TOP_MODULATEINVCOLOR_ADDALPHA, Op::Mad, 0, {O::A1Comp, O::A2, O::A1Alpha}, true},  // (1-A1)*A2 + A1.a
     // 4*sum((A1-0.5)*(A2-0.5)) = dot(2*(A1-0.5), 2*(A2-0.5)), replicated to all channels
     {TOP_DOTPRODUCT3, Op::Dp3, 0, {O::A1Sign, O::A2Sign}},
     {TOP_MULTIPLYADD, Op::Mad, 0, {O::A1, O::A2, O::A0}},  // A0 + A1*A2
@@ -92,13 +95,13 @@ int argIndex(Operand o) {
 // passes the previous stage's result through: D3D9's runtime turns the op into
 // SELECTARG1(CURRENT), so the default stage 0, MODULATE(TEXTURE, CURRENT), draws an
 // untextured triangle in its plain diffuse colour (it does not read CURRENT twice).
-// An argument counts when the op reads it: ARG1 unless SELECTARG2, ARG2 unless
-// SELECTARG1, ARG0 only for MULTIPLYADD and LERP.
+// An argument counts when the op's recipe reads it (ARG0 only for MULTIPLYADD and
+// LERP, ARG2 not for SELECTARG1 or PREMODULATE, ARG1 not for SELECTARG2).
 void passThroughWithoutTexture(uint32_t& op, std::array<uint32_t, 3>& args) {
   if (op == TOP_DISABLE || !recipeFor(op)) return;
   auto isTexture = [&](int i) { return (args[size_t(i)] & TA_SELECTMASK) == TA_TEXTURE; };
-  const bool reads = (isTexture(1) && op != TOP_SELECTARG2) || (isTexture(2) && op != TOP_SELECTARG1) ||
-                     (isTexture(0) && (op == TOP_MULTIPLYADD || op == TOP_LERP));
+  const TextureOpUse use = textureOpUse(op);
+  const bool reads = (use.arg0 && isTexture(0)) || (use.arg1 && isTexture(1)) || (use.arg2 && isTexture(2));
   if (!reads) return;
   op = TOP_SELECTARG1;
   args[1] = TA_CURRENT;
@@ -113,6 +116,37 @@ bool recipeReadsTexture(const Recipe* r, const std::array<uint32_t, 3>& args) {
   }
   return false;
 }
+
+}  // namespace
+
+TextureOpUse textureOpUse(uint32_t top) {
+  TextureOpUse use;
+  if (top == TOP_DISABLE) {
+    use.valid = true;
+    return use;
+  }
+  // The bump stage's texture holds du/dv (and luminance); its arguments are not read.
+  if (isBumpOp(top)) {
+    use.valid = use.ownTexture = use.colorOnly = true;
+    return use;
+  }
+  const Recipe* r = recipeFor(top);
+  if (!r) return use;
+  use.valid = true;
+  use.colorOnly = r->colorOnly;
+  for (Operand o : r->src) {
+    if (o == O::TextureAlpha || o == O::TextureAlphaComp) use.ownTexture = true;
+    switch (argIndex(o)) {
+      case 0: use.arg0 = true; break;
+      case 1: use.arg1 = true; break;
+      case 2: use.arg2 = true; break;
+      default: break;
+    }
+  }
+  return use;
+}
+
+namespace {
 
 Vec4 toVec4(Color4 c) { return {c.r, c.g, c.b, c.a}; }
 

@@ -9,6 +9,7 @@
 #include "validate.h"
 
 #include "caps_flags.h"
+#include "texture_op_use.h"
 
 #include <algorithm>
 #include <bit>
@@ -132,37 +133,17 @@ std::string nameOr(EnumKind kind, uint32_t value) {
 std::string stateName(TextureStageState s) { return nameOr(EnumKind::TextureStageState, s); }
 std::string renderStateName(RenderState s) { return nameOr(EnumKind::RenderState, s); }
 
-// Which arguments an operation reads (D3DTOP semantics in fixed-function.md §2).
-struct OpUse {
-  bool arg0, arg1, arg2;
-  bool ownTexture;  // reads this stage's texture regardless of its arguments
-  bool colorOnly;   // valid as COLOROP only
-};
-
-OpUse opUse(uint32_t op) {
-  switch (op) {
-    case TOP_DISABLE: return {false, false, false, false, false};
-    case TOP_SELECTARG1: return {false, true, false, false, false};
-    case TOP_SELECTARG2: return {false, false, true, false, false};
-    case TOP_BLENDTEXTUREALPHA:
-    case TOP_BLENDTEXTUREALPHAPM: return {false, true, true, true, false};
-    case TOP_MODULATEALPHA_ADDCOLOR:
-    case TOP_MODULATECOLOR_ADDALPHA:
-    case TOP_MODULATEINVALPHA_ADDCOLOR:
-    case TOP_MODULATEINVCOLOR_ADDALPHA: return {false, true, true, false, true};
-    // The bump stage's texture holds du/dv; its arguments are not read.
-    case TOP_BUMPENVMAP:
-    case TOP_BUMPENVMAPLUMINANCE: return {false, false, false, true, true};
-    case TOP_MULTIPLYADD:
-    case TOP_LERP: return {true, true, true, false, false};
-    default: return {false, true, true, false, false};
-  }
-}
-
 bool isPow2(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
-bool validOp(uint32_t op) { return op >= TOP_DISABLE && op <= TOP_LERP; }
-uint32_t opCapsBit(uint32_t op) { return 1u << (op - 1); }
+// The TextureOpCaps bit of a D3DTOP (0 for a value that is none).
+uint32_t opCapsBit(uint32_t op) {
+  return caps_flags::bitOf(caps_flags::kTextureOpCaps, enumName(EnumKind::TextureOp, op));
+}
+// The SrcBlendCaps/DestBlendCaps bit of a D3DBLEND; INVBLENDFACTOR shares BLENDFACTOR's.
+uint32_t blendCapsBit(uint32_t blend) {
+  if (blend == BLEND_INVBLENDFACTOR) blend = BLEND_BLENDFACTOR;
+  return caps_flags::bitOf(caps_flags::kBlendCaps, enumName(EnumKind::Blend, blend));
+}
 
 class Validator {
  public:
@@ -286,9 +267,9 @@ class Validator {
                                        TextureStageState a1, TextureStageState a2,
                                        bool& usesTexture) {
     uint32_t op = s_.tss(n, opState);
-    if (!validOp(op))
+    const pipeline::TextureOpUse use = pipeline::textureOpUse(op);
+    if (!use.valid)
       return fmt::format("stage {} {} {} is not a D3DTEXTUREOP", n, stateName(opState), op);
-    OpUse use = opUse(op);
     std::string opName = nameOr(EnumKind::TextureOp, op);
     if (use.colorOnly && opState == TSS_ALPHAOP)
       return fmt::format("stage {} ALPHAOP {} is a color-only operation", n, opName);
@@ -610,15 +591,12 @@ class Validator {
     return std::nullopt;
   }
 
-  // D3DPBLENDCAPS_x is bit (D3DBLEND_x - 1); INVBLENDFACTOR shares the BLENDFACTOR bit.
   std::optional<std::string> blendFactor(RenderState state, uint32_t caps,
                                          std::string_view capsName) {
     uint32_t blend = s_.rs(state);
     if (blend < BLEND_ZERO || blend > BLEND_INVBLENDFACTOR)
       return fmt::format("{} {} is not a D3DBLEND", renderStateName(state), blend);
-    uint32_t bit = blend == BLEND_INVBLENDFACTOR ? 1u << (BLEND_BLENDFACTOR - 1)
-                                                 : 1u << (blend - 1);
-    if (!(caps & bit))
+    if (!(caps & blendCapsBit(blend)))
       return fmt::format("{} {} is not in {} of {}", renderStateName(state),
                          nameOr(EnumKind::Blend, blend), capsName, caps_.name);
     return std::nullopt;

@@ -35,28 +35,105 @@ std::string quoteChar(char c) {
 
 const char* const kOperandNames[] = {"src0", "src1", "src2", "src3"};
 
+// Diagnostic codes of the assembler (docs/diagnostics.md, "Assembler"): one per kind of
+// mistake, so that tests and tools can tell them apart without reading the message.
+constexpr const char* kSyntax = "A2000";               // expected one thing, found another
+constexpr const char* kUnknownInstruction = "A2001";   // no such mnemonic
+constexpr const char* kVersion = "A2002";              // version missing, unknown or repeated
+constexpr const char* kNotInVersion = "A2003";         // instruction or modifier the version lacks
+constexpr const char* kOperandCount = "A2004";         // too few or too many operands
+constexpr const char* kRegister = "A2005";             // unknown register or one without its number
+constexpr const char* kRegisterRange = "A2006";        // register number or offset out of range
+constexpr const char* kRelative = "A2007";             // relative addressing
+constexpr const char* kSwizzle = "A2008";              // swizzle or write mask
+constexpr const char* kSourceModifier = "A2009";       // source modifier, or a modifier on a destination
+constexpr const char* kInstructionModifier = "A2010";  // _x2, _sat, comparison suffix, co-issue/predicate misuse
+constexpr const char* kDefinition = "A2011";           // def / defi / defb form
+constexpr const char* kLiteral = "A2012";              // number or boolean value
+constexpr const char* kDeclaration = "A2013";          // dcl_* usage, sampler type or register
+constexpr const char* kPredicate = "A2014";            // predicate register
+constexpr const char* kDirective = "A2015";            // preprocessor directive other than #line
+constexpr const char* kUnterminatedComment = "A2016";  // /* without */
+constexpr const char* kTooManyErrors = "A2099";        // error limit reached
+
+// A file with more errors than this reports these and stops: the rest are mostly
+// consequences of the first ones.
+constexpr int kMaxErrors = 100;
+
+// Abandons the instruction being parsed; the driver loop reports it and resynchronises.
+struct InstructionError {
+  refx::Diagnostic diagnostic;
+};
+
 class Parser {
  public:
-  Parser(std::string_view text, std::string_view fileName) : src_(text), file_(fileName) {}
+  Parser(std::string_view text, std::string_view fileName, DiagnosticSink& sink)
+      : src_(text), file_(fileName), sink_(sink) {}
 
+  // Every error is reported; after one, parsing goes on at the next line (or at the
+  // next instruction, when the bad one ran into it). Without a version nothing after
+  // it can be read, so a version error ends the run.
   Shader run() {
-    skipSpace();
-    parseVersion();
     for (;;) {
-      skipSpace();
-      if (atEnd()) break;
-      parseInstruction();
+      try {
+        skipSpace();
+      } catch (const InstructionError& e) {
+        if (!report(e)) return std::move(shader_);
+        resynchronise(physLine_, p_);
+        continue;
+      }
+      if (atEnd() && errors_ > 0) return std::move(shader_);  // nothing but the bad comment or directive
+      try {
+        parseVersion();
+      } catch (const InstructionError& e) {
+        report(e);
+        return std::move(shader_);
+      }
+      break;
+    }
+    for (;;) {
+      int startLine = physLine_;
+      size_t startPos = p_;
+      try {
+        skipSpace();
+        if (atEnd()) break;
+        startLine = physLine_;
+        startPos = p_;
+        parseInstruction();
+      } catch (const InstructionError& e) {
+        if (!report(e)) break;
+        resynchronise(startLine, startPos);
+      }
     }
     return std::move(shader_);
   }
 
  private:
+  // False once the error limit is reached (the limit itself is reported then).
+  bool report(const InstructionError& e) {
+    sink_.report(e.diagnostic);
+    if (++errors_ < kMaxErrors) return true;
+    sink_.error(SourceLocation{file_, e.diagnostic.where.line, 0}, kTooManyErrors,
+                "too many errors ({}); assembly stops here", kMaxErrors);
+    return false;
+  }
+
+  // After an error: skip the rest of the line, unless the failed instruction (which began
+  // at startLine, startPos) already reached the first word of a later line (a missing
+  // operand): that word begins the next instruction.
+  void resynchronise(int startLine, size_t startPos) {
+    if (p_ > startPos && physLine_ > startLine && !atEnd() && onlySpaceBeforeOnLine(p_)) return;
+    skipToLineEnd();
+  }
+
   struct Pos {
     int line, column;
   };
 
   std::string_view src_;
   std::string file_;
+  DiagnosticSink& sink_;
+  int errors_ = 0;  // reported by this run (the sink may hold others')
   size_t p_ = 0;
   int physLine_ = 1;   // 1-based line of p_ in the text
   size_t lineStart_ = 0;
@@ -72,7 +149,7 @@ class Parser {
   char peek(size_t k = 0) const { return p_ + k < src_.size() ? src_[p_ + k] : '\0'; }
 
   template <typename... Args>
-  [[noreturn]] void errorAt(Pos pos, fmt::format_string<Args...> f, Args&&... args) {
+  [[noreturn]] void errorAt(const char* code, Pos pos, fmt::format_string<Args...> f, Args&&... args) {
     std::string what = fmt::format(f, std::forward<Args>(args)...);
     std::string prefix;
     if (!instrName_.empty()) {
@@ -80,7 +157,7 @@ class Parser {
       if (!operandName_.empty()) prefix += " " + operandName_;
       prefix += ": ";
     }
-    failAt(SourceLocation{file_, pos.line, pos.column}, "{}{}", prefix, what);
+    throw InstructionError{{SourceLocation{file_, pos.line, pos.column}, Severity::Error, code, prefix + what}};
   }
 
   // What the current position holds, for "found …" in messages.
@@ -129,7 +206,7 @@ class Parser {
         for (;;) {
           if (atEnd()) {
             instrName_.clear();
-            errorAt(start, "unterminated comment '/*' (expected '*/')");
+            errorAt(kUnterminatedComment, start, "unterminated comment '/*' (expected '*/')");
           }
           if (peek() == '*' && peek(1) == '/') {
             p_ += 2;
@@ -160,8 +237,8 @@ class Parser {
     std::string name(src_.substr(w, p_ - w));
     if (name != "line" && !(name.empty() && isDigit(peek()))) {
       instrName_.clear();
-      errorAt(start, "preprocessor directive '#{}' is not supported (assembly text is not preprocessed; only #line is accepted)",
-              name);
+      errorAt(kDirective, start, "preprocessor directive '#{}' is not supported (assembly text is not preprocessed; only #line is accepted)",
+                          name);
     }
     while (peek() == ' ' || peek() == '\t') ++p_;
     long n = 0;
@@ -203,7 +280,7 @@ class Parser {
 
   void expect(char c, const char* what) {
     skipSpace();
-    if (peek() != c) errorAt(here(), "expected {}, found {}", what, describeHere());
+    if (peek() != c) errorAt(kSyntax, here(), "expected {}, found {}", what, describeHere());
     ++p_;
   }
 
@@ -211,24 +288,24 @@ class Parser {
   void parseVersion() {
     Pos pos = here();
     if (atEnd())
-      errorAt(pos, "empty shader: expected a version (vs_1_1, vs_2_0, vs_3_0, ps_1_1 … ps_3_0) first");
+      errorAt(kVersion, pos, "empty shader: expected a version (vs_1_1, vs_2_0, vs_3_0, ps_1_1 … ps_3_0) first");
     size_t s = p_;
     while (!atEnd() && (isIdentChar(peek()) || peek() == '.')) ++p_;
     std::string text = lowerCopy(src_.substr(s, p_ - s));
     if (text.empty() || !isIdentStart(text[0])) {
       p_ = s;
-      errorAt(pos, "expected the shader version (vs_1_1 … ps_3_0) first, found {}", describeHere());
+      errorAt(kVersion, pos, "expected the shader version (vs_1_1 … ps_3_0) first, found {}", describeHere());
     }
     auto v = parseVersionName(text);
     if (!v) {
       std::string shown(src_.substr(s, std::min<size_t>(p_ - s, 40)));
       if (findMnemonic(lowerCopy(shown.substr(0, shown.find('_')))))
-        errorAt(pos, "expected the shader version (vs_1_1 … ps_3_0) before the first instruction, found '{}'",
-                shown);
-      errorAt(pos,
-              "unknown shader version '{}' (expected vs_1_1, vs_2_0, vs_2_x, vs_3_0, ps_1_1, ps_1_2, ps_1_3, "
-              "ps_1_4, ps_2_0, ps_2_x, ps_3_0; `vs.1.1` spelling also accepted)",
-              shown);
+        errorAt(kVersion, pos, "expected the shader version (vs_1_1 … ps_3_0) before the first instruction, found '{}'",
+                          shown);
+      errorAt(kVersion, pos,
+                        "unknown shader version '{}' (expected vs_1_1, vs_2_0, vs_2_x, vs_3_0, ps_1_1, ps_1_2, ps_1_3, "
+                        "ps_1_4, ps_2_0, ps_2_x, ps_3_0; `vs.1.1` spelling also accepted)",
+                        shown);
     }
     shader_.version = *v;
   }
@@ -244,7 +321,7 @@ class Parser {
     if (peek() == '+') {
       ++p_;
       ins.coissue = true;
-      if (!ver.ps1x()) errorAt(start, "co-issue '+' is only available in ps_1_x, not in {}", ver.name());
+      if (!ver.ps1x()) errorAt(kNotInVersion, start, "co-issue '+' is only available in ps_1_x, not in {}", ver.name());
       skipSpace();
     }
     if (peek() == '(') {
@@ -252,15 +329,15 @@ class Parser {
       ++p_;
       parsePredicate(ins);
       if (!ver.sm2plus())
-        errorAt(ppos, "predicated instructions need shader model 2.0 or later, not {}", ver.name());
+        errorAt(kNotInVersion, ppos, "predicated instructions need shader model 2.0 or later, not {}", ver.name());
       skipSpace();
     }
 
     Pos mpos = here();
     if (!isIdentStart(peek())) {
       if (peek() == '.' || isDigit(peek()))
-        errorAt(mpos, "expected an instruction, found {}", describeHere());
-      errorAt(mpos, "unexpected {} (expected an instruction)", quoteChar(peek()));
+        errorAt(kSyntax, mpos, "expected an instruction, found {}", describeHere());
+      errorAt(kSyntax, mpos, "unexpected {} (expected an instruction)", quoteChar(peek()));
     }
     std::string_view word = readWord();
     std::string lw = lowerCopy(word);
@@ -281,14 +358,14 @@ class Parser {
     if (!m) {
       if (lw == "vs" || lw == "ps" || parseVersionName(lw)) {
         while (!atEnd() && (isIdentChar(peek()) || peek() == '.') && p_ - (mpos.column - 1 + lineStart_) < 40) ++p_;
-        errorAt(mpos, "a second shader version '{}' (the version must appear once, first)",
-                src_.substr(lineStart_ + mpos.column - 1, p_ - (lineStart_ + mpos.column - 1)));
+        errorAt(kVersion, mpos, "a second shader version '{}' (the version must appear once, first)",
+                          src_.substr(lineStart_ + mpos.column - 1, p_ - (lineStart_ + mpos.column - 1)));
       }
       std::string near = nearestMnemonic(parts[0]);
       if (!near.empty())
-        errorAt(mpos, "unknown instruction '{}' (did you mean '{}'?)", word, near);
-      errorAt(mpos, "unknown instruction '{}' (expected an instruction such as mov, add, mul, mad, dp3, tex, texld, def, dcl_*)",
-              word);
+        errorAt(kUnknownInstruction, mpos, "unknown instruction '{}' (did you mean '{}'?)", word, near);
+      errorAt(kUnknownInstruction, mpos, "unknown instruction '{}' (expected an instruction such as mov, add, mul, mad, dp3, tex, texld, def, dcl_*)",
+                                   word);
     }
     ins.opcode = m->opcode;
     ins.control = m->control;
@@ -297,7 +374,7 @@ class Parser {
     if ((ins.predicated || ins.coissue) &&
         (m->kind == MnemonicKind::Def || m->kind == MnemonicKind::Dcl || ins.opcode == Opcode::Phase ||
          ins.opcode == Opcode::Label))
-      errorAt(start, "'{}' cannot be {}", m->name, ins.coissue ? "co-issued" : "predicated");
+      errorAt(kInstructionModifier, start, "'{}' cannot be {}", m->name, ins.coissue ? "co-issued" : "predicated");
 
     size_t firstSuffix = 1;
     if (m->kind == MnemonicKind::Compare) {
@@ -308,7 +385,7 @@ class Parser {
         ins.control = uint8_t(cmp);
         firstSuffix = 2;
       } else if (m->opcode == m->compareOpcode) {
-        errorAt(mpos, "'{}' needs a comparison suffix (_gt, _lt, _ge, _le, _eq, _ne)", word);
+        errorAt(kInstructionModifier, mpos, "'{}' needs a comparison suffix (_gt, _lt, _ge, _le, _eq, _ne)", word);
       }
     }
     if (m->kind == MnemonicKind::Dcl && parts.size() > 1 && !findResultModifier(parts[1])) {
@@ -332,8 +409,8 @@ class Parser {
     if (ins.opcode == Opcode::Dcl && ins.dst.type != RegType::Sampler &&
         ins.textureType != TextureType::Unknown) {
       operandName_ = "dst";
-      errorAt(mpos, "expected a sampler register s# for a dcl_{} declaration, found {}",
-              textureTypeName(ins.textureType), registerText(ins.dst.type, ins.dst.index));
+      errorAt(kDeclaration, mpos, "expected a sampler register s# for a dcl_{} declaration, found {}",
+                            textureTypeName(ins.textureType), registerText(ins.dst.type, ins.dst.index));
     }
     if (ins.opcode == Opcode::Dcl && ver.isPixel() && ver.major < 3 &&
         (ins.dst.type == RegType::Input || ins.dst.type == RegType::Texture)) {
@@ -342,7 +419,7 @@ class Parser {
       ins.usageIndex = 0;
     }
     if ((ins.dst.shift != 0 || ins.dst.resultMod != 0) && !ins.hasDst)
-      errorAt(mpos, "instruction modifiers need an instruction with a destination register");
+      errorAt(kInstructionModifier, mpos, "instruction modifiers need an instruction with a destination register");
     shader_.instructions.push_back(std::move(ins));
     instrName_.clear();
     operandName_.clear();
@@ -354,37 +431,37 @@ class Parser {
       case FormRule::Any: break;
       case FormRule::Ps1Tex:  // tex, texcoord: ps_1_0–ps_1_3 spellings
         if (!(v.ps1x() && !v.atLeast(1, 4)))
-          errorAt(pos, "'{}' is the ps_1_1–ps_1_3 instruction; {} uses '{}'", m.name, v.name(),
-                  m.opcode == Opcode::Tex ? "texld" : "texcrd");
+          errorAt(kNotInVersion, pos, "'{}' is the ps_1_1–ps_1_3 instruction; {} uses '{}'", m.name, v.name(),
+                                 m.opcode == Opcode::Tex ? "texld" : "texcrd");
         break;
       case FormRule::Ps14Up:  // texld: ps_1_4 and later (vs_3_0 samples with texldl)
         if (v.isVertex())
-          errorAt(pos, "'{}' is a pixel shader instruction (vs_3_0 samples textures with texldl)", m.name);
+          errorAt(kNotInVersion, pos, "'{}' is a pixel shader instruction (vs_3_0 samples textures with texldl)", m.name);
         if (v.ps1x() && !v.atLeast(1, 4))
-          errorAt(pos, "'{}' needs ps_1_4 or later; {} uses 'tex'", m.name, v.name());
+          errorAt(kNotInVersion, pos, "'{}' needs ps_1_4 or later; {} uses 'tex'", m.name, v.name());
         break;
       case FormRule::Ps14Only:  // texcrd
         if (!(v.isPixel() && v.major == 1 && v.minor == 4))
-          errorAt(pos, "'{}' is a ps_1_4 instruction{}", m.name,
-                  v.ps1x() ? std::string("; ") + v.name() + " uses 'texcoord'" : std::string());
+          errorAt(kNotInVersion, pos, "'{}' is a ps_1_4 instruction{}", m.name,
+                                 v.ps1x() ? std::string("; ") + v.name() + " uses 'texcoord'" : std::string());
         break;
       case FormRule::Sm2Up:  // texldp, texldb: the control bits exist from SM2 on
         if (v.isVertex())
-          errorAt(pos, "'{}' is a pixel shader instruction (vs_3_0 samples textures with texldl)", m.name);
-        if (!v.sm2plus()) errorAt(pos, "'{}' needs shader model 2.0 or later, not {}", m.name, v.name());
+          errorAt(kNotInVersion, pos, "'{}' is a pixel shader instruction (vs_3_0 samples textures with texldl)", m.name);
+        if (!v.sm2plus()) errorAt(kNotInVersion, pos, "'{}' needs shader model 2.0 or later, not {}", m.name, v.name());
         break;
       case FormRule::Reserved:
-        errorAt(pos, "'{}' is a reserved opcode that no shader version accepts", m.name);
+        errorAt(kNotInVersion, pos, "'{}' is a reserved opcode that no shader version accepts", m.name);
     }
   }
 
   void applyInstructionModifier(Instruction& ins, const std::string& s, Pos pos) {
-    if (s.empty()) errorAt(pos, "empty instruction modifier '_' in '{}'", instrName_);
+    if (s.empty()) errorAt(kInstructionModifier, pos, "empty instruction modifier '_' in '{}'", instrName_);
     if (auto shift = findShift(s)) {
       if (!shader_.version.ps1x())
-        errorAt(pos, "instruction modifier '_{}' is only available in ps_1_x, not in {}", s,
-                shader_.version.name());
-      if (ins.dst.shift != 0) errorAt(pos, "two scale modifiers ('_{}' and another) on one instruction", s);
+        errorAt(kNotInVersion, pos, "instruction modifier '_{}' is only available in ps_1_x, not in {}", s,
+                               shader_.version.name());
+      if (ins.dst.shift != 0) errorAt(kInstructionModifier, pos, "two scale modifiers ('_{}' and another) on one instruction", s);
       ins.dst.shift = *shift;
       return;
     }
@@ -393,9 +470,9 @@ class Parser {
       return;
     }
     if (findComparison(s) != Comparison::None)
-      errorAt(pos, "comparison '_{}' only applies to if, break and setp", s);
-    errorAt(pos, "unknown instruction modifier '_{}' (expected _x2, _x4, _x8, _d2, _d4, _d8, _sat, _pp or _centroid)",
-            s);
+      errorAt(kInstructionModifier, pos, "comparison '_{}' only applies to if, break and setp", s);
+    errorAt(kInstructionModifier, pos, "unknown instruction modifier '_{}' (expected _x2, _x4, _x8, _d2, _d4, _d8, _sat, _pp or _centroid)",
+                                  s);
   }
 
   void parsePredicate(Instruction& ins) {
@@ -408,7 +485,7 @@ class Parser {
     }
     Pos rpos = here();
     std::string w = lowerCopy(readWord());
-    if (w != "p0") errorAt(rpos, "expected the predicate register p0 inside '( )', found '{}'", w);
+    if (w != "p0") errorAt(kPredicate, rpos, "expected the predicate register p0 inside '( )', found '{}'", w);
     ins.predicated = true;
     skipSpace();
     if (peek() == '.') {
@@ -426,20 +503,20 @@ class Parser {
       ins.textureType = *tt;
       return;
     }
-    if (s == "1d") errorAt(pos, "1D samplers cannot be declared (expected dcl_2d, dcl_cube or dcl_volume)");
+    if (s == "1d") errorAt(kDeclaration, pos, "1D samplers cannot be declared (expected dcl_2d, dcl_cube or dcl_volume)");
     size_t d = s.size();
     while (d > 0 && isDigit(s[d - 1])) --d;
     auto usage = findUsage(s.substr(0, d));
     if (!usage)
-      errorAt(pos,
-              "unknown declaration 'dcl_{}' (expected a usage such as dcl_position, dcl_normal, dcl_texcoord0, "
-              "dcl_color1, or a sampler type dcl_2d, dcl_cube, dcl_volume)",
-              s);
+      errorAt(kDeclaration, pos,
+                            "unknown declaration 'dcl_{}' (expected a usage such as dcl_position, dcl_normal, dcl_texcoord0, "
+                            "dcl_color1, or a sampler type dcl_2d, dcl_cube, dcl_volume)",
+                            s);
     int index = 0;
     if (d < s.size()) {
-      if (s.size() - d > 2) errorAt(pos, "usage index in 'dcl_{}' must be 0 to 15", s);
+      if (s.size() - d > 2) errorAt(kDeclaration, pos, "usage index in 'dcl_{}' must be 0 to 15", s);
       index = std::stoi(s.substr(d));
-      if (index > 15) errorAt(pos, "usage index in 'dcl_{}' must be 0 to 15", s);
+      if (index > 15) errorAt(kDeclaration, pos, "usage index in 'dcl_{}' must be 0 to 15", s);
     }
     ins.usage = *usage;
     ins.usageIndex = uint8_t(index);
@@ -458,8 +535,8 @@ class Parser {
           std::string name = quotedName();
           instrName_.clear();
           operandName_.clear();
-          errorAt(here(), "{} takes {} operand{} ({}) in {}, found more", name, want, want == 1 ? "" : "s",
-                  describeForm(form), shader_.version.name());
+          errorAt(kOperandCount, here(), "{} takes {} operand{} ({}) in {}, found more", name, want, want == 1 ? "" : "s",
+                                 describeForm(form), shader_.version.name());
         }
         if (got == 0 && form.dst) {
           operandName_ = "dst";
@@ -496,8 +573,8 @@ class Parser {
     std::string saved = instrName_;
     instrName_.clear();
     operandName_.clear();
-    errorAt(mpos, "'{}' takes {} operand{} ({}) in {}, found {}", saved, want, want == 1 ? "" : "s",
-            describeForm(form), shader_.version.name(), got);
+    errorAt(kOperandCount, mpos, "'{}' takes {} operand{} ({}) in {}, found {}", saved, want, want == 1 ? "" : "s",
+                           describeForm(form), shader_.version.name(), got);
   }
 
   // Before an operand: a missing operand shows up as the next instruction's mnemonic.
@@ -533,26 +610,26 @@ class Parser {
     std::string letters = lw.substr(0, d);
     std::string digits = lw.substr(d);
     for (char c : digits)
-      if (!isDigit(c)) errorAt(pos, "unknown register '{}' ({})", word, registerHelp(shader_.version));
+      if (!isDigit(c)) errorAt(kRegister, pos, "unknown register '{}' ({})", word, registerHelp(shader_.version));
     const RegisterName* rn = findRegisterName(letters, shader_.version);
     if (!rn) {
-      if (lw.empty()) errorAt(pos, "expected a register, found {}", describeHere());
-      errorAt(pos, "unknown register '{}' ({})", word, registerHelp(shader_.version));
+      if (lw.empty()) errorAt(kRegister, pos, "expected a register, found {}", describeHere());
+      errorAt(kRegister, pos, "unknown register '{}' ({})", word, registerHelp(shader_.version));
     }
     Reg r{rn->type, rn->fixedIndex, !digits.empty()};
     if (rn->indexed) {
       if (digits.empty()) {
         if (!allowBareForRelative || peekAfterSpace() != '[')
-          errorAt(pos, "register '{}' needs a number (e.g. {}0)", word, letters);
+          errorAt(kRegister, pos, "register '{}' needs a number (e.g. {}0)", word, letters);
         r.index = 0;
       } else {
-        if (digits.size() > 6) errorAt(pos, "register number of '{}' is out of range", word);
+        if (digits.size() > 6) errorAt(kRegisterRange, pos, "register number of '{}' is out of range", word);
         r.index = uint32_t(std::stoul(digits));
       }
       if (r.index > rn->maxIndex)
-        errorAt(pos, "register '{}' is out of range ({}{} is the highest encodable)", word, letters, rn->maxIndex);
+        errorAt(kRegisterRange, pos, "register '{}' is out of range ({}{} is the highest encodable)", word, letters, rn->maxIndex);
     } else if (!digits.empty()) {
-      errorAt(pos, "unknown register '{}' ({})", word, registerHelp(shader_.version));
+      errorAt(kRegister, pos, "unknown register '{}' ({})", word, registerHelp(shader_.version));
     }
     return r;
   }
@@ -596,7 +673,7 @@ class Parser {
           ++p_;
           negative = true;
         } else {
-          errorAt(here(), "expected '+', '-' or ']' in the relative address, found {}", describeHere());
+          errorAt(kRelative, here(), "expected '+', '-' or ']' in the relative address, found {}", describeHere());
         }
         skipSpace();
       }
@@ -610,9 +687,9 @@ class Parser {
         }
         offset += negative ? -n : n;
       } else if (isIdentStart(peek())) {
-        if (negative) errorAt(tpos, "an address register cannot be subtracted");
+        if (negative) errorAt(kRelative, tpos, "an address register cannot be subtracted");
         std::string w = lowerCopy(readWord());
-        if (haveAddr) errorAt(tpos, "two address registers in one relative address");
+        if (haveAddr) errorAt(kRelative, tpos, "two address registers in one relative address");
         if (w == "a0") {
           rel.type = RegType::Addr;
           rel.component = 0;
@@ -623,31 +700,31 @@ class Parser {
             std::string c = lowerCopy(readWord());
             int comp = c.size() == 1 ? componentIndex(c[0]) : -1;
             if (comp < 0)
-              errorAt(cpos, "expected one component (.x, .y, .z or .w) of a0, found '.{}'", c);
+              errorAt(kRelative, cpos, "expected one component (.x, .y, .z or .w) of a0, found '.{}'", c);
             rel.component = uint8_t(comp);
           }
         } else if (w == "al") {
           rel.type = RegType::Loop;
           rel.component = 0;
         } else {
-          errorAt(tpos, "expected a0.x or aL in the relative address, found '{}'", w);
+          errorAt(kRelative, tpos, "expected a0.x or aL in the relative address, found '{}'", w);
         }
         haveAddr = true;
       } else {
-        errorAt(tpos, "expected a number, a0.x or aL in the relative address, found {}", describeHere());
+        errorAt(kRelative, tpos, "expected a number, a0.x or aL in the relative address, found {}", describeHere());
       }
     }
     ++p_;  // ']'
     long total = long(index) + offset;
     if (total < 0 || total > long(maxIndex))
-      errorAt(open, "register offset {} is out of range (0 to {})", total, maxIndex);
+      errorAt(kRegisterRange, open, "register offset {} is out of range (0 to {})", total, maxIndex);
     index = uint32_t(total);
     if (haveAddr) {
       const Version v = shader_.version;
       if (v.isPixel() && v.major < 3)
-        errorAt(regPos, "relative addressing is not available in {}", v.name());
+        errorAt(kRelative, regPos, "relative addressing is not available in {}", v.name());
       if (v.isVertex() && v.major < 2 && (rel.type != RegType::Addr || rel.component != 0))
-        errorAt(regPos, "{} relative addressing reads a0.x only", v.name());
+        errorAt(kRelative, regPos, "{} relative addressing reads a0.x only", v.name());
     }
     return haveAddr;
   }
@@ -659,14 +736,14 @@ class Parser {
     Pos pos = here();
     if (!isIdentStart(peek())) {
       if (peek() == '-' || peek() == '!' || (peek() == '1' && nextNonSpaceIs('-')))
-        errorAt(pos, "a destination register takes no source modifier");
-      errorAt(pos, "expected a destination register, found {}", describeHere());
+        errorAt(kSourceModifier, pos, "a destination register takes no source modifier");
+      errorAt(kSyntax, pos, "expected a destination register, found {}", describeHere());
     }
     std::string_view word = readWord();
     size_t us = word.find('_');
     if (us != std::string_view::npos)
-      errorAt(pos, "a destination register takes no modifier ('{}'; instruction modifiers go on the mnemonic, e.g. mul_x2)",
-              word);
+      errorAt(kSourceModifier, pos, "a destination register takes no modifier ('{}'; instruction modifiers go on the mnemonic, e.g. mul_x2)",
+                               word);
     Reg r = parseRegisterName(word, pos, true);
     d.type = r.type;
     d.index = uint16_t(r.index);
@@ -678,13 +755,13 @@ class Parser {
       d.index = uint16_t(idx);
       if (rel) {
         if (!(shader_.version.isVertex() && shader_.version.major >= 3))
-          errorAt(pos, "relative addressing of a destination needs vs_3_0 (o[aL + n])");
+          errorAt(kRelative, pos, "relative addressing of a destination needs vs_3_0 (o[aL + n])");
         d.relative = true;
       }
       skipSpace();
     } else if (!r.hasNumber && findRegisterName(registerLetters(word), shader_.version) &&
                findRegisterName(registerLetters(word), shader_.version)->indexed) {
-      errorAt(pos, "register '{}' needs a number", word);
+      errorAt(kRegister, pos, "register '{}' needs a number", word);
     }
     dstMaskGiven_ = false;
     if (peek() == '.') {
@@ -724,7 +801,7 @@ class Parser {
       // `1-r0`: the invert modifier.
       ++p_;
       skipSpace();
-      if (peek() != '-') errorAt(pos, "expected a source register, found a number (did you mean '1-' invert?)");
+      if (peek() != '-') errorAt(kSyntax, pos, "expected a source register, found a number (did you mean '1-' invert?)");
       ++p_;
       comp = true;
       skipSpace();
@@ -737,8 +814,8 @@ class Parser {
     Pos rpos = here();
     if (!isIdentStart(peek())) {
       if (isDigit(peek()) || peek() == '.')
-        errorAt(rpos, "expected a source register, found a number (immediate values need a def'd constant)");
-      errorAt(rpos, "expected a source register, found {}", describeHere());
+        errorAt(kSyntax, rpos, "expected a source register, found a number (immediate values need a def'd constant)");
+      errorAt(kSyntax, rpos, "expected a source register, found {}", describeHere());
     }
     std::string_view word = readWord();
     std::string_view regPart = word.substr(0, word.find('_'));
@@ -758,7 +835,7 @@ class Parser {
     }
     if (!r.hasNumber && !bracketed) {
       const RegisterName* rn = findRegisterName(registerLetters(regPart), shader_.version);
-      if (rn && rn->indexed) errorAt(rpos, "register '{}' needs a number", regPart);
+      if (rn && rn->indexed) errorAt(kRegister, rpos, "register '{}' needs a number", regPart);
     }
     bool haveSwizzle = false;
     for (;;) {
@@ -796,13 +873,13 @@ class Parser {
   SrcMod combineModifiers(bool neg, bool comp, bool logicalNot, const std::vector<std::pair<std::string, Pos>>& mods,
                           Pos pos) {
     if (mods.size() > 1)
-      errorAt(mods[1].second, "source modifiers '_{}' and '_{}' cannot be combined", mods[0].first, mods[1].first);
+      errorAt(kSourceModifier, mods[1].second, "source modifiers '_{}' and '_{}' cannot be combined", mods[0].first, mods[1].first);
     if (logicalNot) {
-      if (neg || comp || !mods.empty()) errorAt(pos, "'!' cannot be combined with other source modifiers");
+      if (neg || comp || !mods.empty()) errorAt(kSourceModifier, pos, "'!' cannot be combined with other source modifiers");
       return SrcMod::Not;
     }
     if (comp) {
-      if (!mods.empty()) errorAt(pos, "the invert modifier '1-' cannot be combined with '_{}'", mods[0].first);
+      if (!mods.empty()) errorAt(kSourceModifier, pos, "the invert modifier '1-' cannot be combined with '_{}'", mods[0].first);
       return SrcMod::Comp;
     }
     if (mods.empty()) return neg ? SrcMod::Neg : SrcMod::None;
@@ -820,34 +897,34 @@ class Parser {
     for (const Pair& e : table) {
       if (m != e.name) continue;
       if (neg) {
-        if (e.negated == SrcMod::None) errorAt(pos, "'-' cannot be combined with '_{}'", m);
+        if (e.negated == SrcMod::None) errorAt(kSourceModifier, pos, "'-' cannot be combined with '_{}'", m);
         return e.negated;
       }
       return e.plain;
     }
-    errorAt(mods[0].second, "unknown source modifier '_{}' (expected _bias, _bx2, _x2, _abs, _dz, _db, _dw or _da)", m);
+    errorAt(kSourceModifier, mods[0].second, "unknown source modifier '_{}' (expected _bias, _bx2, _x2, _abs, _dz, _db, _dw or _da)", m);
   }
 
   uint8_t parseSwizzle(std::string_view letters, Pos pos) {
     int sel[4];
     bool xyzw = false, rgba = false;
     if (letters.empty() || letters.size() > 4)
-      errorAt(pos, "bad swizzle '.{}' (expected 1 to 4 of x, y, z, w or r, g, b, a)", letters);
+      errorAt(kSwizzle, pos, "bad swizzle '.{}' (expected 1 to 4 of x, y, z, w or r, g, b, a)", letters);
     for (size_t i = 0; i < letters.size(); ++i) {
       char c = lower(letters[i]);
       int k = componentIndex(c);
-      if (k < 0) errorAt(pos, "bad swizzle '.{}' (expected 1 to 4 of x, y, z, w or r, g, b, a)", letters);
+      if (k < 0) errorAt(kSwizzle, pos, "bad swizzle '.{}' (expected 1 to 4 of x, y, z, w or r, g, b, a)", letters);
       (c == 'x' || c == 'y' || c == 'z' || c == 'w' ? xyzw : rgba) = true;
       sel[i] = k;
     }
-    if (xyzw && rgba) errorAt(pos, "bad swizzle '.{}' (x y z w and r g b a letters cannot be mixed)", letters);
+    if (xyzw && rgba) errorAt(kSwizzle, pos, "bad swizzle '.{}' (x y z w and r g b a letters cannot be mixed)", letters);
     for (size_t i = letters.size(); i < 4; ++i) sel[i] = sel[letters.size() - 1];  // `.xy` = `.xyyy`
     return uint8_t(sel[0] | sel[1] << 2 | sel[2] << 4 | sel[3] << 6);
   }
 
   uint8_t parseWriteMask(std::string_view letters, Pos pos) {
     if (letters.empty() || letters.size() > 4)
-      errorAt(pos, "bad write mask '.{}' (expected components of x, y, z, w or r, g, b, a in order)", letters);
+      errorAt(kSwizzle, pos, "bad write mask '.{}' (expected components of x, y, z, w or r, g, b, a in order)", letters);
     bool xyzw = false, rgba = false;
     int last = -1;
     uint8_t mask = 0;
@@ -855,13 +932,13 @@ class Parser {
       char c = lower(ch);
       int k = componentIndex(c);
       if (k < 0)
-        errorAt(pos, "bad write mask '.{}' (expected components of x, y, z, w or r, g, b, a in order)", letters);
+        errorAt(kSwizzle, pos, "bad write mask '.{}' (expected components of x, y, z, w or r, g, b, a in order)", letters);
       (c == 'x' || c == 'y' || c == 'z' || c == 'w' ? xyzw : rgba) = true;
-      if (k <= last) errorAt(pos, "bad write mask '.{}' (components must appear once, in x, y, z, w order)", letters);
+      if (k <= last) errorAt(kSwizzle, pos, "bad write mask '.{}' (components must appear once, in x, y, z, w order)", letters);
       last = k;
       mask |= uint8_t(1 << k);
     }
-    if (xyzw && rgba) errorAt(pos, "bad write mask '.{}' (x y z w and r g b a letters cannot be mixed)", letters);
+    if (xyzw && rgba) errorAt(kSwizzle, pos, "bad write mask '.{}' (x y z w and r g b a letters cannot be mixed)", letters);
     return mask;
   }
 
@@ -880,27 +957,27 @@ class Parser {
     skipSpace();
     operandName_ = "dst";
     Pos pos = here();
-    if (!isIdentStart(peek())) errorAt(pos, "expected a constant register, found {}", describeHere());
+    if (!isIdentStart(peek())) errorAt(kSyntax, pos, "expected a constant register, found {}", describeHere());
     std::string_view word = readWord();
     Reg r = parseRegisterName(word, pos, false);
     RegType want = ins.opcode == Opcode::Def ? RegType::Const
                    : ins.opcode == Opcode::DefI ? RegType::ConstInt
                                                 : RegType::ConstBool;
     if (r.type != want)
-      errorAt(pos, "expected a {} register, found '{}'",
-              want == RegType::Const ? "c#" : want == RegType::ConstInt ? "i#" : "b#", word);
+      errorAt(kDefinition, pos, "expected a {} register, found '{}'",
+                           want == RegType::Const ? "c#" : want == RegType::ConstInt ? "i#" : "b#", word);
     ins.hasDst = true;
     ins.dst.type = r.type;
     ins.dst.index = uint16_t(r.index);
     skipSpace();
-    if (peek() == '.') errorAt(here(), "'{}' takes no write mask", instrName_);
+    if (peek() == '.') errorAt(kDefinition, here(), "'{}' takes no write mask", instrName_);
     const int count = ins.opcode == Opcode::DefB ? 1 : 4;
     for (int i = 0; i < count; ++i) {
       operandName_.clear();
       if (!accept(',')) {
         instrName_.clear();
-        errorAt(ins.pos.line ? Pos{ins.pos.line, ins.pos.column} : pos, "'{}' takes a register and {} value{}, found {}",
-                lowerCopy(opcodeMnemonic(ins.opcode)), count, count == 1 ? "" : "s", i);
+        errorAt(kDefinition, ins.pos.line ? Pos{ins.pos.line, ins.pos.column} : pos, "'{}' takes a register and {} value{}, found {}",
+                             lowerCopy(opcodeMnemonic(ins.opcode)), count, count == 1 ? "" : "s", i);
       }
       skipSpace();
       operandName_ = fmt::format("value {}", i + 1);
@@ -913,7 +990,7 @@ class Parser {
     }
     operandName_.clear();
     skipSpace();
-    if (peek() == ',') errorAt(here(), "'{}' takes {} value{}, found more", instrName_, count, count == 1 ? "" : "s");
+    if (peek() == ',') errorAt(kDefinition, here(), "'{}' takes {} value{}, found more", instrName_, count, count == 1 ? "" : "s");
   }
 
   uint32_t parseFloatLiteral() {
@@ -934,7 +1011,7 @@ class Parser {
     }
     if (!digits) {
       p_ = s;
-      errorAt(pos, "expected a number, found {}", describeHere());
+      errorAt(kLiteral, pos, "expected a number, found {}", describeHere());
     }
     if ((peek() == 'e' || peek() == 'E') &&
         (isDigit(peek(1)) || ((peek(1) == '-' || peek(1) == '+') && isDigit(peek(2))))) {
@@ -944,7 +1021,7 @@ class Parser {
     size_t numEnd = p_;
     if (peek() == 'f' || peek() == 'F') ++p_;
     if (isIdentChar(peek()) || peek() == '.')
-      errorAt(pos, "malformed number '{}'", src_.substr(s, std::min<size_t>(p_ - s + 1, 40)));
+      errorAt(kLiteral, pos, "malformed number '{}'", src_.substr(s, std::min<size_t>(p_ - s + 1, 40)));
     std::string text(src_.substr(numStart, numEnd - numStart));
     float value = 0;
     auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -953,10 +1030,10 @@ class Parser {
       double dv = 0;
       auto [p2, ec2] = std::from_chars(text.data(), text.data() + text.size(), dv);
       if (ec2 == std::errc::result_out_of_range || std::abs(dv) > 3.4028235e38)
-        errorAt(pos, "number '{}' is out of the float range", src_.substr(s, std::min<size_t>(numEnd - s, 40)));
+        errorAt(kLiteral, pos, "number '{}' is out of the float range", src_.substr(s, std::min<size_t>(numEnd - s, 40)));
       value = float(dv);
     } else if (ec != std::errc() || ptr != text.data() + text.size()) {
-      errorAt(pos, "malformed number '{}'", src_.substr(s, std::min<size_t>(numEnd - s, 40)));
+      errorAt(kLiteral, pos, "malformed number '{}'", src_.substr(s, std::min<size_t>(numEnd - s, 40)));
     }
     if (negative) value = -value;
     uint32_t bits;
@@ -976,16 +1053,16 @@ class Parser {
       ++p_;
       skipInlineSpace();
     }
-    if (!isDigit(peek())) errorAt(pos, "expected an integer, found {}", describeHere());
+    if (!isDigit(peek())) errorAt(kLiteral, pos, "expected an integer, found {}", describeHere());
     long long n = 0;
     while (isDigit(peek())) {
       n = n * 10 + (peek() - '0');
-      if (n > 0x80000000LL) errorAt(pos, "integer is out of the 32-bit range");
+      if (n > 0x80000000LL) errorAt(kLiteral, pos, "integer is out of the 32-bit range");
       ++p_;
     }
-    if (isIdentChar(peek()) || peek() == '.') errorAt(pos, "expected an integer (defi takes integers), found {}", describeAt(pos));
+    if (isIdentChar(peek()) || peek() == '.') errorAt(kLiteral, pos, "expected an integer (defi takes integers), found {}", describeAt(pos));
     if (negative) n = -n;
-    if (n > 0x7FFFFFFFLL) errorAt(pos, "integer is out of the 32-bit range");
+    if (n > 0x7FFFFFFFLL) errorAt(kLiteral, pos, "integer is out of the 32-bit range");
     return uint32_t(int32_t(n));
   }
 
@@ -997,15 +1074,15 @@ class Parser {
       std::string w = lowerCopy(readWord());
       if (w == "true") return 1;
       if (w == "false") return 0;
-      errorAt(pos, "expected true or false, found '{}'", w);
+      errorAt(kLiteral, pos, "expected true or false, found '{}'", w);
     }
     if (isDigit(peek())) {
       bool nonzero = false;
       while (isDigit(peek())) nonzero |= peek() != '0', ++p_;
-      if (isIdentChar(peek()) || peek() == '.') errorAt(pos, "expected true or false");
+      if (isIdentChar(peek()) || peek() == '.') errorAt(kLiteral, pos, "expected true or false");
       return nonzero ? 1 : 0;
     }
-    errorAt(pos, "expected true or false, found {}", describeHere());
+    errorAt(kLiteral, pos, "expected true or false, found {}", describeHere());
   }
 
   // ---- dcl ------------------------------------------------------------------------------------
@@ -1013,20 +1090,31 @@ class Parser {
     skipSpace();
     operandName_ = "dst";
     Pos pos = here();
-    if (atEnd() || !isIdentStart(peek())) errorAt(pos, "expected the register to declare, found {}", describeHere());
+    if (atEnd() || !isIdentStart(peek())) errorAt(kSyntax, pos, "expected the register to declare, found {}", describeHere());
     ins.hasDst = true;
     parseDst(ins.dst);
-    if (ins.dst.relative) errorAt(pos, "a declaration names one register, not a relative address");
+    if (ins.dst.relative) errorAt(kDeclaration, pos, "a declaration names one register, not a relative address");
     operandName_.clear();
     skipSpace();
-    if (peek() == ',') errorAt(here(), "'{}' declares one register, found more operands", instrName_);
+    if (peek() == ',') errorAt(kDeclaration, here(), "'{}' declares one register, found more operands", instrName_);
   }
 };
 
 }  // namespace
 
+Shader assemble(std::string_view source, std::string_view fileName, DiagnosticSink& diagnostics) {
+  return Parser(source, fileName, diagnostics).run();
+}
+
 Shader assemble(std::string_view source, std::string_view fileName) {
-  return Parser(source, fileName).run();
+  DiagnosticSink sink;
+  Shader shader = assemble(source, fileName, sink);
+  if (sink.hasErrors()) {
+    std::string message;
+    for (const refx::Diagnostic& d : sink.all()) message += (message.empty() ? "" : "\n") + d.str();
+    throw Error(std::move(message));
+  }
+  return shader;
 }
 
 std::vector<uint32_t> assembleTokens(std::string_view source, std::string_view fileName) {

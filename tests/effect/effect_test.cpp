@@ -306,7 +306,11 @@ TEST(EffectErrors, BrokenTechniqueIsReportedAndTheGoodOneStillValidates) {
       "} }\n",
       "broken.fx");
   ASSERT_EQ(fx->diagnostics().size(), 1u);
-  EXPECT_EQ(fx->diagnostics()[0].str(), "broken.fx:4:3: error: unknown state 'ZEnabel'");
+  EXPECT_EQ(fx->diagnostics()[0].code, "F1201");  // unknown state
+  EXPECT_EQ(fx->diagnostics()[0].where.line, 4);
+  EXPECT_EQ(fx->diagnostics()[0].where.column, 3);
+  // The printed form: position, code, message.
+  EXPECT_EQ(fx->diagnostics()[0].str(), "broken.fx:4:3: error F1201: unknown state 'ZEnabel'");
   EXPECT_TRUE(fx->validateTechnique(0, loadCapsProfile("dx6-tnt2")).ok);
   const TechniqueValidation v = fx->validateTechnique(1, loadCapsProfile("ref"));
   EXPECT_FALSE(v.ok);
@@ -327,16 +331,20 @@ TEST(EffectErrors, BadReferencesKeywordsAndShadersAreLocated) {
       "technique e { pass p { ColorOp[9] = Modulate; } }\n"
       "technique f { pass p { VertexShader = compile vs_2_0 main(); } }\n",
       "refs.fx");
-  std::vector<std::string> msgs;
-  for (const auto& d : fx->diagnostics()) msgs.push_back(d.str());
+  std::vector<std::string> msgs, codes;
+  for (const auto& d : fx->diagnostics()) {
+    msgs.push_back(d.str());
+    codes.push_back(d.code + "@" + std::to_string(d.where.line) + ":" + std::to_string(d.where.column));
+  }
   ASSERT_EQ(msgs.size(), 6u);
-  EXPECT_EQ(msgs[0], "refs.fx:2:38: error: unknown parameter 'missing'");
-  EXPECT_EQ(msgs[1], "refs.fx:3:37: error: 'Texture' takes a texture parameter; 'c' is a float");
-  EXPECT_EQ(msgs[2], "refs.fx:4:35: error: 'Sideways' is not a value of 'CullMode' (a D3DCULL keyword or a parameter)");
+  EXPECT_EQ(codes[0], "F1200@2:38");  // unknown parameter
+  EXPECT_EQ(codes[1], "F1203@3:37");  // a float where a texture belongs
+  EXPECT_EQ(codes[2], "F1203@4:35");  // not a D3DCULL keyword
+  EXPECT_EQ(msgs[2], "refs.fx:4:35: error F1203: 'Sideways' is not a value of 'CullMode' (a D3DCULL keyword or a parameter)");
   // The assembler's position inside the asm block is the file's position.
   EXPECT_EQ(msgs[3].rfind("refs.fx:7:", 0), 0u) << msgs[3];
   EXPECT_NE(msgs[3].find("t7"), std::string::npos) << msgs[3];
-  EXPECT_EQ(msgs[4], "refs.fx:9:32: error: 'ColorOp[9]' is out of range (0 to 7)");
+  EXPECT_EQ(codes[4], "F1202@9:32");  // ColorOp has stages 0 to 7
   // fxc's code for an entry point the file does not define.
   EXPECT_EQ(msgs[5].rfind("refs.fx:10:", 0), 0u) << msgs[5];
   EXPECT_NE(msgs[5].find("X3501: 'main': entrypoint not found"), std::string::npos) << msgs[5];
@@ -352,17 +360,21 @@ TEST(EffectErrors, SyntaxErrorsThrowWithTheirPosition) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("float4 x = {1, 2;\n"), "syntax.fx:1:17: error: expected '}' to close the list, found ';'");
-  EXPECT_EQ(message("technique t { pass p { CullMode = None } }"),
-            "syntax.fx:1:40: error: expected ';' after the value of 'CullMode', found '}'");
+  // "file:line:col: error CODE:" of the (one) error.
+  auto located = [&](const char* text) {
+    const std::string m = message(text);
+    return m.substr(0, m.find(": ", m.find(" error ")) + 1);
+  };
+  EXPECT_EQ(located("float4 x = {1, 2;\n"), "syntax.fx:1:17: error F1100:");  // the list's '}' missing
+  EXPECT_EQ(located("technique t { pass p { CullMode = None } }"), "syntax.fx:1:40: error F1100:");  // no ';'
+  // The message names what a parameter type can be.
   EXPECT_EQ(message("Foo bar;"),
-            "syntax.fx:1:1: error: unknown type 'Foo' (expected a parameter type: float, float4, float4x4, int, "
+            "syntax.fx:1:1: error F1101: unknown type 'Foo' (expected a parameter type: float, float4, float4x4, int, "
             "bool, DWORD, vector, matrix, string, texture, sampler, vertexshader, pixelshader …)");
-  EXPECT_EQ(message("technique t { pass p { PixelShader = asm { ps.1.1 "),
-            "syntax.fx:1:42: error: expected '}' to close the block opened here");
-  EXPECT_EQ(message("/* open"), "syntax.fx:1:1: error: unterminated /* comment");
-  EXPECT_EQ(message("#if 1\nfloat x;\n"), "syntax.fx:3:1: error: #if without #endif at the end of the file");
-  EXPECT_EQ(message("#define A A B\nfloat4 x = A;"), "syntax.fx:2:12: error: macro 'A' expands into itself");
+  EXPECT_EQ(located("technique t { pass p { PixelShader = asm { ps.1.1 "), "syntax.fx:1:42: error F1011:");
+  EXPECT_EQ(located("/* open"), "syntax.fx:1:1: error F1000:");
+  EXPECT_EQ(located("#if 1\nfloat x;\n"), "syntax.fx:3:1: error F1005:");
+  EXPECT_EQ(located("#define A A B\nfloat4 x = A;"), "syntax.fx:2:12: error F1004:");
 }
 
 TEST(EffectPreprocessor, DefinesConditionsAndIncludes) {

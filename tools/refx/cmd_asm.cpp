@@ -1,8 +1,8 @@
 // `refx asm FILE [-o OUT] [--listing] [--no-validate]`: shader assembly text
 // (.vsh/.psh/.asm) → D3D9 tokens written as little-endian DWORDs (default OUT: FILE
 // with the extension .vso for vertex and .pso for pixel shaders). The version rules
-// are checked unless --no-validate; any error exits 1 with `file:line:col: error:`
-// diagnostics.
+// are checked unless --no-validate; any error exits 1, printing every diagnostic of the
+// file as `file:line:col: error A2001: …`.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -50,10 +50,13 @@ int runAsm(const AsmOptions& o) {
     }
   }
 
-  shader::Shader sh;
+  // Every error of the file, each with its code.
+  DiagnosticSink diagnostics;
+  shader::Shader sh = shader::assemble(text, o.input, diagnostics);
+  for (const Diagnostic& d : diagnostics.all()) std::fprintf(stderr, "%s\n", d.str().c_str());
+  if (diagnostics.hasErrors()) return 1;
   std::vector<uint32_t> tokens;
   try {
-    sh = shader::assemble(text, o.input);
     tokens = shader::encode(sh);
   } catch (const Error& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -104,14 +104,19 @@ int runValidate(const ValidateOptions& o) {
   }
 
   shader::Shader sh;
-  try {
-    if (looksLikeTokens(bytes))
+  if (looksLikeTokens(bytes)) {
+    try {
       sh = shader::decode(shader::tokensFromBytes(bytes));
-    else
-      sh = shader::assemble(std::string(bytes.begin(), bytes.end()), o.input);
-  } catch (const Error& e) {
-    printError(o.input, e);
-    return 1;
+    } catch (const Error& e) {
+      printError(o.input, e);
+      return 1;
+    }
+  } else {
+    // Every assembler error of the file, each with its code.
+    DiagnosticSink diagnostics;
+    sh = shader::assemble(std::string(bytes.begin(), bytes.end()), o.input, diagnostics);
+    for (const Diagnostic& d : diagnostics.all()) std::fprintf(stderr, "%s\n", d.str().c_str());
+    if (diagnostics.hasErrors()) return 1;
   }
 
   shader::ValidationCaps vcaps;

@@ -50,9 +50,12 @@ int main(int argc, char** argv) {
     for (auto& [sub, action] : commands)
       if (sub->parsed()) return action();
   } catch (const refx::Error& e) {
-    // Located errors already read "file:line: error: ..."; others get the prefix here.
+    // Located errors already read "file:line: error: ..." or "file:line: error A2001: ...";
+    // others get the prefix here.
     const std::string what = e.what();
-    const bool located = what.find("error: ") != std::string::npos;
+    const size_t coded = what.find(" error ");
+    const bool located = what.find("error: ") != std::string::npos ||
+                         (coded != std::string::npos && what.compare(coded + 12, 2, ": ") == 0);
     std::fprintf(stderr, "refx: %s%s\n", located ? "" : "error: ", what.c_str());
     return 1;
   } catch (const std::exception& e) {

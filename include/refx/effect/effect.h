@@ -60,7 +60,8 @@ struct EffectDiagnostic {
   SourceLocation where;
   std::string message;
   bool error = true;
-  std::string str() const;  // "file:line:col: error: message"
+  std::string code;         // "F1201", "A2001" (docs/diagnostics.md); empty when the finding has none
+  std::string str() const;  // "file:line:col: error F1201: message" ("error: message" without a code)
 };
 
 struct PassDesc {
@@ -126,9 +127,11 @@ struct EffectOptions {
 class Effect {
  public:
   // Parses `text`; `fileName` names it in diagnostics and anchors relative #includes.
-  // Throws refx::Error (file:line:col) when the file cannot be used at all: a syntax
-  // error outside a technique, an unknown type. Errors inside a technique mark only
-  // that technique broken (diagnostics() lists them), as D3DX does.
+  // Throws refx::Error when the file cannot be used at all (syntax errors, an unknown
+  // type, a parameter that cannot be declared); its message lists every such error,
+  // one per line, as "file:line:col: error F1100: …" (codes in docs/diagnostics.md).
+  // Errors binding the states of a technique mark only that technique broken
+  // (diagnostics() lists them, with their codes), as D3DX does.
   static std::unique_ptr<Effect> fromText(std::string_view text, const std::string& fileName,
                                           const EffectOptions& options = {});
   // A compiled effect: the fx_2_0 binary `fxc /T fx_2_0` (or `refx fxc`) writes, tag
