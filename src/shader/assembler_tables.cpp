@@ -118,22 +118,35 @@ std::optional<Version> parseVersionName(std::string_view text) {
   return v;
 }
 
+// D3DSHADER_COMPARISON order: gt 1 … le 6.
+constexpr std::array<std::string_view, 7> kComparisonNames = {"", "gt", "eq", "ge", "lt", "ne", "le"};
+
 Comparison findComparison(std::string_view s) {
-  static constexpr std::array<std::string_view, 7> names = {"", "gt", "eq", "ge", "lt", "ne", "le"};
-  for (size_t i = 1; i < names.size(); ++i)
-    if (s == names[i]) return Comparison(i);
+  for (size_t i = 1; i < kComparisonNames.size(); ++i)
+    if (s == kComparisonNames[i]) return Comparison(i);
   return Comparison::None;
 }
 
+std::string_view comparisonName(Comparison c) {
+  return size_t(c) < kComparisonNames.size() ? kComparisonNames[size_t(c)] : "";
+}
+
+struct ShiftSpelling {
+  std::string_view name;
+  int8_t shift;
+};
+constexpr ShiftSpelling kShifts[] = {{"x2", 1}, {"x4", 2}, {"x8", 3}, {"d2", -1}, {"d4", -2}, {"d8", -3}};
+
 std::optional<int8_t> findShift(std::string_view s) {
-  struct E {
-    std::string_view name;
-    int8_t shift;
-  };
-  static constexpr E table[] = {{"x2", 1}, {"x4", 2}, {"x8", 3}, {"d2", -1}, {"d4", -2}, {"d8", -3}};
-  for (const E& e : table)
+  for (const ShiftSpelling& e : kShifts)
     if (s == e.name) return e.shift;
   return std::nullopt;
+}
+
+std::string_view shiftName(int8_t shift) {
+  for (const ShiftSpelling& e : kShifts)
+    if (e.shift == shift) return e.name;
+  return "";
 }
 
 std::optional<uint8_t> findResultModifier(std::string_view s) {
@@ -160,14 +173,18 @@ const char* textureTypeName(TextureType t) {
   }
 }
 
+// D3DDECLUSAGE order.
+constexpr std::array<std::string_view, 14> kUsageNames = {
+    "position", "blendweight", "blendindices", "normal", "psize", "texcoord", "tangent",
+    "binormal", "tessfactor",  "positiont",    "color",  "fog",   "depth",    "sample"};
+
 std::optional<DeclUsage> findUsage(std::string_view s) {
-  static constexpr std::array<std::string_view, 14> names = {
-      "position", "blendweight", "blendindices", "normal", "psize", "texcoord", "tangent",
-      "binormal", "tessfactor",  "positiont",    "color",  "fog",   "depth",    "sample"};
-  for (size_t i = 0; i < names.size(); ++i)
-    if (s == names[i]) return DeclUsage(i);
+  for (size_t i = 0; i < kUsageNames.size(); ++i)
+    if (s == kUsageNames[i]) return DeclUsage(i);
   return std::nullopt;
 }
+
+std::string_view usageName(DeclUsage u) { return size_t(u) < kUsageNames.size() ? kUsageNames[size_t(u)] : ""; }
 
 OperandForm operandForm(Opcode op, Version v) {
   // The encoder's table, so that what is parsed is exactly what gets encoded.

@@ -14,6 +14,7 @@
 #include "refx/shader/opcode_table.h"
 #include "refx/shader/validator.h"
 #include "refx/shader/version_rules.h"
+#include "shader/assembler_tables.h"
 
 
 namespace refx::shader {
@@ -22,14 +23,11 @@ namespace {
 
 constexpr char kComponents[] = "xyzw";
 
-const char* const kUsageNames[] = {"position", "blendweight", "blendindices", "normal",   "psize",
-                                   "texcoord", "tangent",     "binormal",     "tessfactor", "positiont",
-                                   "color",    "fog",         "depth",        "sample"};
-
-const char* const kComparisonSuffix[] = {"", "_gt", "_eq", "_ge", "_lt", "_ne", "_le", ""};
-
-// Shift nibble as the instruction suffix (ps_1_x); index = shift + 3.
-const char* const kShiftSuffix[] = {"_d8", "_d4", "_d2", "", "_x2", "_x4", "_x8"};
+// "_gt" … for ifc/breakc/setp; nothing for the reserved values 0 and 7.
+std::string comparisonSuffix(uint8_t control) {
+  const std::string_view name = asmtables::comparisonName(Comparison(control & 7));
+  return name.empty() ? std::string() : "_" + std::string(name);
+}
 
 // Float literal with the fewest digits that reads back to the same bits.
 std::string floatText(uint32_t bits) {
@@ -113,7 +111,9 @@ std::string dstText(const DstParam& d, Opcode op, Version version) {
 
 std::string resultModifierText(const DstParam& d) {
   std::string s;
-  if (d.shift >= -3 && d.shift <= 3) s += kShiftSuffix[d.shift + 3];
+  if (d.shift >= -3 && d.shift <= 3) {
+    if (d.shift != 0) s += "_" + std::string(asmtables::shiftName(d.shift));
+  }
   else s += d.shift > 0 ? fmt::format("_x{}", 1 << d.shift) : fmt::format("_d{}", 1 << -d.shift);
   if (d.resultMod & ResultSaturate) s += "_sat";
   if (d.resultMod & ResultPartialPrecision) s += "_pp";
@@ -124,9 +124,10 @@ std::string resultModifierText(const DstParam& d) {
 std::string dclMnemonic(const Instruction& ins, Version version) {
   const RegType t = ins.dst.type;
   if (t == RegType::Sampler) {
-    static const char* const types[] = {"dcl", "dcl_1d", "dcl_2d", "dcl_cube", "dcl_volume"};
-    unsigned tt = unsigned(ins.textureType);
-    return tt < 5 ? types[tt] : fmt::format("dcl_textype{}", tt);
+    const unsigned tt = unsigned(ins.textureType);
+    if (tt == unsigned(TextureType::Unknown)) return "dcl";
+    return tt <= unsigned(TextureType::Volume) ? fmt::format("dcl_{}", asmtables::textureTypeName(ins.textureType))
+                                               : fmt::format("dcl_textype{}", tt);
   }
   // ps_2_0/2_x v#/t# and ps_3_0 vPos/vFace carry no usage: plain `dcl`.
   const bool plain = ins.usage == DeclUsage::Position && ins.usageIndex == 0 && version.isPixel() &&
@@ -134,7 +135,8 @@ std::string dclMnemonic(const Instruction& ins, Version version) {
   if (plain) return "dcl";
   unsigned u = unsigned(ins.usage);
   std::string s = "dcl_";
-  s += u < std::size(kUsageNames) ? kUsageNames[u] : fmt::format("usage{}", u);
+  const std::string_view name = asmtables::usageName(ins.usage);
+  s += name.empty() ? fmt::format("usage{}", u) : std::string(name);
   if (ins.usageIndex != 0) s += std::to_string(ins.usageIndex);
   return s;
 }
@@ -145,7 +147,7 @@ std::string mnemonic(const Instruction& ins, Version version) {
   // ifc/breakc/setp: the first spelling that takes a comparison suffix (if_gt, break_lt, setp_eq).
   for (const Mnemonic& m : allMnemonics())
     if (m.kind == MnemonicKind::Compare && m.compareOpcode == ins.opcode)
-      return m.name + std::string(kComparisonSuffix[ins.control & 7]);
+      return m.name + comparisonSuffix(ins.control);
   return std::string(mnemonicIn(ins.opcode, ins.control, version));
 }
 
