@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <span>
 #include <vector>
 
 #include <fmt/format.h>
@@ -9,40 +11,61 @@
 namespace refx::shader::asmtables {
 namespace {
 
-constexpr uint32_t kMax = 2047;  // 11-bit register number
-const RegisterName kVertexRegisters[] = {
-    {"r", RegType::Temp, true, 0, kMax},        {"v", RegType::Input, true, 0, kMax},
-    {"c", RegType::Const, true, 0, 8191},       {"a", RegType::Addr, true, 0, 0},
-    {"al", RegType::Loop, false, 0, 0},         {"i", RegType::ConstInt, true, 0, kMax},
-    {"b", RegType::ConstBool, true, 0, kMax},   {"s", RegType::Sampler, true, 0, kMax},
-    {"l", RegType::Label, true, 0, kMax},       {"p", RegType::Predicate, true, 0, 0},
+// The register files assembly names in each shader type, with the highest number each
+// encodes (11 bits; c# reaches 8191 through CONST2..4). Their letters are the register
+// namer's spelling (version_rules.h) in lower case.
+struct AssembledFile {
+  RegType type;
+  uint32_t maxIndex;
 };
-const RegisterName kVertexOutputsSm1Sm2[] = {
-    {"opos", RegType::RastOut, false, 0, 0},    {"ofog", RegType::RastOut, false, 1, 1},
-    {"opts", RegType::RastOut, false, 2, 2},    {"od", RegType::AttrOut, true, 0, kMax},
-    {"ot", RegType::TexCrdOut, true, 0, kMax},
+constexpr uint32_t kMax = 2047;
+constexpr AssembledFile kVertexFiles[] = {
+    {RegType::Temp, kMax},     {RegType::Input, kMax},     {RegType::Const, 8191},  {RegType::Addr, 0},
+    {RegType::Loop, 0},        {RegType::ConstInt, kMax},  {RegType::ConstBool, kMax}, {RegType::Sampler, kMax},
+    {RegType::Label, kMax},    {RegType::Predicate, 0},
 };
-const RegisterName kVertexOutputsSm3[] = {
-    {"o", RegType::Output, true, 0, kMax},
+constexpr AssembledFile kVertexOutputsSm1Sm2[] = {
+    {RegType::RastOut, 0}, {RegType::AttrOut, kMax}, {RegType::TexCrdOut, kMax}};
+constexpr AssembledFile kVertexOutputsSm3[] = {{RegType::Output, kMax}};
+constexpr AssembledFile kPixelFiles[] = {
+    {RegType::Temp, kMax},     {RegType::Input, kMax},  {RegType::Const, 8191},    {RegType::Sampler, kMax},
+    {RegType::ConstInt, kMax}, {RegType::ConstBool, kMax}, {RegType::Label, kMax}, {RegType::Predicate, 0},
+    {RegType::Loop, 0},        {RegType::ColorOut, kMax}, {RegType::DepthOut, 0},  {RegType::MiscType, 0},
 };
-const RegisterName kPixelRegisters[] = {
-    {"r", RegType::Temp, true, 0, kMax},          {"v", RegType::Input, true, 0, kMax},
-    {"c", RegType::Const, true, 0, 8191},         {"s", RegType::Sampler, true, 0, kMax},
-    {"i", RegType::ConstInt, true, 0, kMax},      {"b", RegType::ConstBool, true, 0, kMax},
-    {"l", RegType::Label, true, 0, kMax},         {"p", RegType::Predicate, true, 0, 0},
-    {"al", RegType::Loop, false, 0, 0},           {"oc", RegType::ColorOut, true, 0, kMax},
-    {"odepth", RegType::DepthOut, false, 0, 0},   {"vpos", RegType::MiscType, false, 0, 0},
-    {"vface", RegType::MiscType, false, 1, 1},
-};
-const RegisterName kPixelTexture[] = {
-    {"t", RegType::Texture, true, 0, kMax},
-};
+constexpr AssembledFile kPixelTexture[] = {{RegType::Texture, kMax}};
 
-template <size_t N>
-const RegisterName* findIn(const RegisterName (&table)[N], std::string_view letters) {
-  for (const RegisterName& r : table)
-    if (letters == r.letters) return &r;
-  return nullptr;
+std::string lowerCase(std::string_view s) {
+  std::string r(s);
+  for (char& c : r) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return r;
+}
+
+// Numbered files by their prefix (r#, oT#); the others by each fixed name (oPos = RASTOUT 0).
+std::vector<RegisterName> registerLetters(std::initializer_list<std::span<const AssembledFile>> groups, Version v) {
+  std::vector<RegisterName> out;
+  for (std::span<const AssembledFile> files : groups)
+    for (const AssembledFile& f : files) {
+      const RegisterNaming* n = findRegisterNaming(f.type, v);
+      if (!n) continue;
+      if (*n->prefix && !n->fixedNames[0]) {
+        out.push_back({lowerCase(n->prefix), f.type, true, 0, f.maxIndex});
+        continue;
+      }
+      for (uint32_t i = 0; i < n->fixedNames.size() && n->fixedNames[i]; ++i)
+        out.push_back({lowerCase(n->fixedNames[i]), f.type, false, i, i});
+    }
+  return out;
+}
+
+const std::vector<RegisterName>& registerLettersOf(Version v) {
+  static const std::vector<RegisterName> vs1 =
+      registerLetters({kVertexFiles, kVertexOutputsSm1Sm2}, {ShaderType::Vertex, 1, 1});
+  static const std::vector<RegisterName> vs3 =
+      registerLetters({kVertexFiles, kVertexOutputsSm3}, {ShaderType::Vertex, 3, 0});
+  static const std::vector<RegisterName> ps1 = registerLetters({kPixelFiles, kPixelTexture}, {ShaderType::Pixel, 2, 0});
+  static const std::vector<RegisterName> ps3 = registerLetters({kPixelFiles}, {ShaderType::Pixel, 3, 0});
+  if (v.isVertex()) return v.major >= 3 ? vs3 : vs1;
+  return v.major >= 3 ? ps3 : ps1;
 }
 
 int editDistance(std::string_view a, std::string_view b) {
@@ -193,12 +216,9 @@ OperandForm operandForm(Opcode op, Version v) {
 }
 
 const RegisterName* findRegisterName(std::string_view letters, Version v) {
-  if (v.isVertex()) {
-    if (auto* r = findIn(kVertexRegisters, letters)) return r;
-    return v.major >= 3 ? findIn(kVertexOutputsSm3, letters) : findIn(kVertexOutputsSm1Sm2, letters);
-  }
-  if (auto* r = findIn(kPixelRegisters, letters)) return r;
-  return v.major < 3 ? findIn(kPixelTexture, letters) : nullptr;
+  for (const RegisterName& r : registerLettersOf(v))
+    if (letters == r.letters) return &r;
+  return nullptr;
 }
 
 std::string registerHelp(Version v) {

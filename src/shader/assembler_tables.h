@@ -44,7 +44,7 @@ struct OperandForm {
 OperandForm operandForm(Opcode op, Version version);
 
 struct RegisterName {
-  const char* letters;  // lower case: "r", "opos", "od" …
+  std::string letters;  // lower case: "r", "opos", "od" … (the register namer's spelling)
   RegType type;
   bool indexed;         // takes a number (r0) or not (oPos)
   uint32_t fixedIndex;  // for names without a number (oFog = 1)

@@ -301,18 +301,6 @@ constexpr const VersionRules* kAll[] = {&kVs11, &kVs20, &kVs2x, &kVs30, &kPs11, 
 
 enum NamedIn : uint8_t { InVertex = 1, InPixel = 2, InBoth = 3 };
 
-// How assembly writes a register of one file: a prefix and the number, or fixed
-// names by number (oPos, oFog, oPts). The first row that matches the shader type
-// and major version names the register.
-struct RegisterNaming {
-  RegType type;
-  uint8_t namedIn;                        // NamedIn bits
-  uint8_t fromMajor;                      // the row applies from this major version on
-  const char* prefix;                     // before the number; "" = fixedNames[0] for every number
-  std::array<const char*, 3> fixedNames;  // numbers 0.. with a name of their own
-  uint16_t numberOffset;                  // CONST2..4 continue the c# numbers at 2048 …
-};
-
 constexpr RegisterNaming kRegisterNames[] = {
     {R::Temp, InBoth, 0, "r", {}, 0},
     {R::Input, InBoth, 0, "v", {}, 0},
@@ -338,23 +326,24 @@ constexpr RegisterNaming kRegisterNames[] = {
     {R::Predicate, InBoth, 0, "p", {}, 0},
 };
 
-const RegisterNaming* namingOf(RegType type, Version v) {
+}  // namespace
+
+// The first row that matches the shader type and major version names the register.
+const RegisterNaming* findRegisterNaming(RegType type, Version v) {
   const uint8_t shader = v.isVertex() ? InVertex : InPixel;
   for (const RegisterNaming& n : kRegisterNames)
     if (n.type == type && (n.namedIn & shader) && v.major >= n.fromMajor) return &n;
   return nullptr;
 }
 
-}  // namespace
-
 std::string_view registerTypeName(RegType type, Version version) {
-  const RegisterNaming* n = namingOf(type, version);
+  const RegisterNaming* n = findRegisterNaming(type, version);
   if (!n) return "?";
   return n->fixedNames[0] ? n->fixedNames[0] : n->prefix;
 }
 
 std::string registerName(RegType type, uint32_t index, Version version) {
-  const RegisterNaming* n = namingOf(type, version);
+  const RegisterNaming* n = findRegisterNaming(type, version);
   if (!n) return "?" + std::to_string(index);
   if (!*n->prefix) return n->fixedNames[0];
   if (index < n->fixedNames.size() && n->fixedNames[index]) return n->fixedNames[index];

@@ -6,6 +6,7 @@
 // shaders against these tables; the lowering to the exec IR reads the same register
 // counts and ranges. What an opcode is, whatever the version: opcode_table.h.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -121,6 +122,19 @@ uint16_t registerCapacity(const VersionRules& rules, RegType type);
 // before a relative address: registerTypeName.
 std::string registerName(RegType type, uint32_t index, Version version);
 std::string_view registerTypeName(RegType type, Version version);
+
+// How assembly writes the registers of one file in a version: a prefix and the
+// number, or fixed names by number (oPos, oFog, oPts). The namer above and the
+// assembler's register letters read it.
+struct RegisterNaming {
+  RegType type;
+  uint8_t namedIn;                        // bit 0: vertex shaders, bit 1: pixel shaders
+  uint8_t fromMajor;                      // the spelling applies from this major version on
+  const char* prefix;                     // before the number; "" = fixedNames[0] for every number
+  std::array<const char*, 3> fixedNames;  // numbers 0.. with a name of their own
+  uint16_t numberOffset;                  // CONST2..4 continue the c# numbers at 2048 …
+};
+const RegisterNaming* findRegisterNaming(RegType type, Version version);
 
 // ps_3_0 texture-instruction costs that depend on the sampler type and variant.
 struct Ps30TextureCost {
