@@ -272,7 +272,7 @@ shader::ValidationCaps Device::shaderValidationCaps() const {
 
 exec::ShaderLoweringOptions Device::shaderLoweringOptions(shader::Version version) const {
   exec::ShaderLoweringOptions o;
-  o.precision = options_.precision == Precision::Hardware ? exec::Precision::Hardware : exec::Precision::Exact;
+  o.precision = options_.precision;
   // PixelShader1xMaxValue of the profile; a profile without pixel shaders gets the
   // version's minimum (1 for ps_1_1-1_3, 8 for ps_1_4).
   const float maxValue = caps_.pixelShader1xMaxValue;
