@@ -759,8 +759,8 @@ struct Effect::Impl {
                         parsed.version.name());
     sh->tokens = shader::encode(parsed);
     // The version's rules, reported at the instruction (the block's text keeps file positions).
-    for (const shader::Diagnostic& d : shader::validate(parsed, validationCaps()))
-      failAt(SourceLocation{e.assembly.file, d.pos.line, d.pos.column}, "{}: {}", what, d.message);
+    for (const Diagnostic& d : shader::validate(parsed, validationCaps()))
+      failAt(SourceLocation{e.assembly.file, d.where.line, d.where.column}, "{}: {}", what, d.message);
     makeRuntimeShader(*sh, e.assembly.where, what);
     return sh;
   }

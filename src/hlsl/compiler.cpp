@@ -137,13 +137,13 @@ CompileResult compile(std::string_view source, std::string_view fileName, const 
       if (!sink.hasErrors()) {
         // Everything refx emits must pass refx's own validator for the profile.
         shader::SlotCount slots = shader::countSlots(sh);
-        for (const shader::Diagnostic& d : shader::validate(sh)) {
+        for (const Diagnostic& d : shader::validate(sh)) {
           bool limit = d.message.find("allows") != std::string::npos;
           if (limit)
-            sink.error({file, d.pos.line, d.pos.column}, "X4532", "cannot map expression to {} instruction set: {}",
+            sink.error({file, d.where.line, d.where.column}, "X4532", "cannot map expression to {} instruction set: {}",
                        options.profile, d.message);
           else
-            sink.error({file, d.pos.line, d.pos.column}, "X9000",
+            sink.error({file, d.where.line, d.where.column}, "X9000",
                        "internal error: generated code fails validation: {}", d.message);
         }
         if (!sink.hasErrors()) {

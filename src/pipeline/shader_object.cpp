@@ -10,8 +10,8 @@ ShaderObject::ShaderObject(std::span<const uint32_t> tokens, shader::ShaderType 
   const bool pixel = type == shader::ShaderType::Pixel;
   if (shader_.version.type != type)
     fail("{} shader expected, got {}", pixel ? "a pixel" : "a vertex", shader_.version.name());
-  const std::vector<shader::Diagnostic> problems = shader::validate(shader_, caps);
-  if (!problems.empty()) fail("{}: {}", shader_.version.name(), problems.front().message);
+  const std::vector<Diagnostic> problems = shader::validate(shader_, caps);
+  if (!problems.empty()) fail("{}", shader::describeViolations(shader_.version.name(), problems));
   lowered({});
 }
 

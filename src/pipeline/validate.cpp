@@ -218,7 +218,7 @@ class Validator {
         return fmt::format("vertex shader {} uses c{} but {} has MaxVertexShaderConst {}",
                            v.name(), highest, caps_.name, limit);
     }
-    const std::vector<shader::Diagnostic> problems = shader::validate(sh.decoded(), vc);
+    const std::vector<Diagnostic> problems = shader::validate(sh.decoded(), vc);
     if (!problems.empty())
       return fmt::format("{} shader {}: {}", kind, v.name(), problems.front().message);
     return std::nullopt;

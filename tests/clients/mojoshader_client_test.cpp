@@ -129,7 +129,7 @@ TEST_P(MojoShaderClient, ParsesAndValidates) {
   const std::string listing = shader::disassemble(r.tokens);
 
   // refx's validator, for the profile the shader was compiled for.
-  for (const shader::Diagnostic& d : shader::validate(r.shader))
+  for (const Diagnostic& d : shader::validate(r.shader))
     ADD_FAILURE() << k.where << " " << k.options.profile << ": validator: " << d.message << "\n" << listing;
 
   // MojoShader, translating to GLSL.

@@ -64,12 +64,10 @@ int runAsm(const AsmOptions& o) {
   }
 
   if (!o.noValidate) {
-    const std::vector<shader::Diagnostic> diags = shader::validate(sh);
-    for (const shader::Diagnostic& d : diags) {
-      SourceLocation where{o.input, d.pos.line, d.pos.column};
-      std::fprintf(stderr, "%s\n", Error(where, d.message).what());
-    }
-    if (!diags.empty()) return 1;
+    DiagnosticSink diags;
+    shader::validate(sh, diags, o.input);
+    for (const Diagnostic& d : diags.all()) std::fprintf(stderr, "%s\n", d.str().c_str());
+    if (diags.hasErrors()) return 1;
   }
 
   if (o.listing) {

@@ -129,8 +129,9 @@ int runValidate(const ValidateOptions& o) {
     if (sh.version.isVertex() && caps.maxVertexShaderConst > 0)
       vcaps.maxVertexShaderConst = int(caps.maxVertexShaderConst);
   }
-  for (const shader::Diagnostic& d : shader::validate(sh, vcaps))
-    errors.push_back(Error(SourceLocation{o.input, d.pos.line, d.pos.column}, d.message).what());
+  DiagnosticSink violations;
+  shader::validate(sh, violations, o.input, vcaps);
+  for (const Diagnostic& d : violations.all()) errors.push_back(d.str());
 
   if (!errors.empty()) {
     for (const std::string& e : errors) std::fprintf(stderr, "%s\n", e.c_str());

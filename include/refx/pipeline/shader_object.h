@@ -30,7 +30,7 @@ class ShaderObject {
   std::shared_ptr<const exec::LoweredShader> lowered(const exec::ShaderLoweringOptions& options) const;
 
  protected:
-  // Decodes, validates (refx::Error with the first rule broken) and lowers once, so a
+  // Decodes, validates (refx::Error listing every rule broken, one per line) and lowers once, so a
   // shader the executor cannot run fails here, as CreateVertexShader/CreatePixelShader do.
   ShaderObject(std::span<const uint32_t> tokens, shader::ShaderType type,
                const shader::ValidationCaps& caps);
