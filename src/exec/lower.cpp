@@ -11,7 +11,9 @@
 #include <optional>
 
 #include "refx/core/diagnostics.h"
+#include "refx/exec/abi.h"
 #include "refx/shader/opcode_table.h"
+#include "refx/shader/version_rules.h"
 
 namespace refx::exec {
 
@@ -20,12 +22,6 @@ namespace {
 namespace sh = refx::shader;
 using sh::Opcode;
 using sh::RegType;
-
-// Register conventions (lower.h).
-constexpr int kVsOutPosition = 0, kVsOutDiffuse = 1, kVsOutSpecular = 2, kVsOutTex0 = 3,
-              kVsOutFog = 11, kVsOutPSize = 12, kVsOutputCount = 13;
-constexpr int kPsInDiffuse = 0, kPsInTex0 = 2, kPsInFog = 10, kPsInPosition = 11,
-              kPsInputCount = 13, kPsOutputCount = 5;
 
 // ps_1_x hardware precision: the register combiners of the DX8 parts (GeForce3/4)
 // kept 9-bit signed values, 8 fractional bits over [-1, 1]; the ps_1_4 parts
@@ -114,13 +110,14 @@ constexpr Simple kSimple[] = {
     {Opcode::Dp3, Op::Dp3, {Reads::Dot3, Reads::Dot3}},
     {Opcode::Dp4, Op::Dp4, {Reads::Dot4, Reads::Dot4}},
     {Opcode::Dp2Add, Op::Dp2Add, {Reads::Dot2, Reads::Dot2, SC}},
-    {Opcode::Rcp, Op::Rcp, {SC}},
-    {Opcode::Rsq, Op::Rsq, {SC}},
-    {Opcode::Exp, Op::Exp2, {SC}},
-    {Opcode::Log, Op::Log2, {SC}},
-    {Opcode::LogP, Op::Log2, {SC}},  // D3D9 logp is the scalar log2 of |x| in every version
-    {Opcode::Pow, Op::Pow, {SC, SC}},
-    {Opcode::SinCos, Op::SinCos, {SC}},
+    // The opcode table's scalar instructions read component 0 of each source.
+    {Opcode::Rcp, Op::Rcp, {}},
+    {Opcode::Rsq, Op::Rsq, {}},
+    {Opcode::Exp, Op::Exp2, {}},
+    {Opcode::Log, Op::Log2, {}},
+    {Opcode::LogP, Op::Log2, {}},  // D3D9 logp is the scalar log2 of |x| in every version
+    {Opcode::Pow, Op::Pow, {}},
+    {Opcode::SinCos, Op::SinCos, {}},
     {Opcode::Crs, Op::Crs, {Reads::Dot3, Reads::Dot3}},
     {Opcode::Nrm, Op::Nrm, {Reads::All}},
     {Opcode::Lit, Op::Lit, {Reads::All}},
@@ -132,16 +129,17 @@ const Simple* simpleFor(Opcode op) {
   return nullptr;
 }
 
-// Matrix macros: rows and the dot product per row.
-struct Macro {
-  Opcode opcode;
-  int rows;
-  Op op;
-};
-constexpr Macro kMacros[] = {
-    {Opcode::M4x4, 4, Op::Dp4}, {Opcode::M4x3, 3, Op::Dp4}, {Opcode::M3x4, 4, Op::Dp3},
-    {Opcode::M3x3, 3, Op::Dp3}, {Opcode::M3x2, 2, Op::Dp3},
-};
+// Sources of a scalar instruction (opcode table): component 0, replicated.
+std::array<Reads, 3> scalarReads() { return {Reads::Scalar, Reads::Scalar, Reads::Scalar}; }
+
+// vs_2_sw, ps_3_sw … follow the rules of the hardware version they extend.
+const sh::VersionRules& rulesFor(sh::Version v) {
+  if (const sh::VersionRules* r = sh::findVersionRules(v)) return *r;
+  sh::Version hardware = v;
+  hardware.minor = v.major == 2 ? 1 : 0;
+  if (const sh::VersionRules* r = sh::findVersionRules(hardware)) return *r;
+  fail("{} has no register rules to lower it with", v.name());
+}
 
 uint8_t usedComponents(Reads r, uint8_t mask) {
   switch (r) {
@@ -161,11 +159,13 @@ struct Block {
 
 class Lowerer {
  public:
-  Lowerer(const sh::Shader& s, const ShaderLoweringOptions& o) : shader_(s), opt_(o), ver_(s.version) {
+  Lowerer(const sh::Shader& s, const ShaderLoweringOptions& o)
+      : shader_(s), opt_(o), ver_(s.version), rules_(rulesFor(s.version)) {
     ps1x_ = ver_.ps1x();
     ps14_ = ps1x_ && ver_.minor >= 4;
     ps13_ = ps1x_ && !ps14_;
-    maxValue_ = ps14_ ? std::max(opt_.pixelShader1xMaxValue, 8.0f) : opt_.pixelShader1xMaxValue;
+    // The device's PixelShader1xMaxValue, at least the version's own range (ps_1_4: 8).
+    maxValue_ = std::max(opt_.pixelShader1xMaxValue, rules_.minRegisterRange);
     quantize_ = ps1x_ && opt_.precision == Precision::Hardware ? kHardwareFractionBits : 0;
   }
 
@@ -200,6 +200,7 @@ class Lowerer {
   const sh::Shader& shader_;
   ShaderLoweringOptions opt_;
   sh::Version ver_;
+  const sh::VersionRules& rules_;
   LoweredShader out_;
   Program& p_ = out_.program;
   bool ps1x_ = false, ps13_ = false, ps14_ = false;
@@ -215,7 +216,7 @@ class Lowerer {
   // Local constants: register → immediate index.
   std::map<int, int> defF_, defI_, defB_;
   // vs_3_0 outputs: o# component → IR output (-1 none). ps_3_0 inputs: (v#, mask, input).
-  int16_t outMap_[12][4];
+  std::vector<std::array<int16_t, 4>> outMap_;
   struct InputDcl {
     int reg;
     uint8_t mask;
@@ -233,9 +234,12 @@ class Lowerer {
 
   // ------------------------------------------------------------------ diagnostics
 
+  // Registers of `type` the version has (for counts from the caps, the most any device has).
+  int count(RegType type) const { return sh::registerCapacity(rules_, type); }
+
   [[noreturn]] void failIn(const sh::Instruction& in, const std::string& what) const {
     const sh::OpcodeInfo* info = sh::findOpcode(in.opcode);
-    const std::string name = info ? info->name : fmt::format("opcode {}", int(in.opcode));
+    const std::string name = info ? std::string(info->name) : fmt::format("opcode {}", int(in.opcode));
     failAt(SourceLocation{"", in.pos.line, in.pos.column}, "{}: {}", name, what);
   }
 
@@ -243,8 +247,7 @@ class Lowerer {
 
   void scan() {
     int maxTemp = -1;
-    for (auto& row : outMap_)
-      for (auto& c : row) c = -1;
+    if (ver_.isVertex() && ver_.major >= 3) outMap_.assign(size_t(count(RegType::Output)), {-1, -1, -1, -1});
     for (const sh::Instruction& in : shader_.instructions) {
       auto seeTemp = [&](RegType t, int index) {
         if (t == RegType::Temp) maxTemp = std::max(maxTemp, index);
@@ -272,7 +275,8 @@ class Lowerer {
       }
     }
     rCount_ = maxTemp + 1;
-    if (rCount_ > 32) fail("temporary register r{} is out of range (at most r31)", maxTemp);
+    if (rCount_ > count(RegType::Temp))
+      fail("temporary register r{} is out of range (at most r{})", maxTemp, count(RegType::Temp) - 1);
   }
 
   int immIndex(Vec4 v) { return p_.imm(v).index; }
@@ -280,7 +284,7 @@ class Lowerer {
   void scanDcl(const sh::Instruction& in) {
     const sh::DstParam& d = in.dst;
     if (d.type == RegType::Sampler) {
-      if (d.index < 16) out_.samplerTypes[d.index] = in.textureType;
+      if (d.index < kSamplerCount) out_.samplerTypes[d.index] = in.textureType;
       return;
     }
     if (ver_.isVertex() && d.type == RegType::Input) {
@@ -288,7 +292,7 @@ class Lowerer {
       return;
     }
     if (ver_.isVertex() && ver_.major >= 3 && d.type == RegType::Output) {
-      if (d.index >= 12) failIn(in, fmt::format("output register o{} is out of range", d.index));
+      if (d.index >= count(RegType::Output)) failIn(in, fmt::format("output register o{} is out of range", d.index));
       const int target = varyingFor(in.usage, in.usageIndex, true);
       if (target < 0)
         failIn(in, fmt::format("output semantic {}{} has no varying; refx passes POSITION0, COLOR0-1, "
@@ -299,7 +303,7 @@ class Lowerer {
       return;
     }
     if (ver_.isPixel() && ver_.major >= 3 && d.type == RegType::Input) {
-      if (d.index >= 10) failIn(in, fmt::format("input register v{} is out of range", d.index));
+      if (d.index >= count(RegType::Input)) failIn(in, fmt::format("input register v{} is out of range", d.index));
       const int input = varyingFor(in.usage, in.usageIndex, false);
       if (input < 0)
         failIn(in, fmt::format("input semantic {}{} has no varying; refx passes COLOR0-1, TEXCOORD0-7 "
@@ -319,15 +323,15 @@ class Lowerer {
   // vs_3_0 output / ps_3_0 input semantic → register of the fixed conventions.
   static int varyingFor(sh::DeclUsage u, int index, bool vertexOutput) {
     switch (u) {
-      case sh::DeclUsage::Position: return vertexOutput && index == 0 ? kVsOutPosition : -1;
+      case sh::DeclUsage::Position: return vertexOutput && index == 0 ? kVertexOutPosition : -1;
       case sh::DeclUsage::Color:
-        if (index > 1) return -1;
-        return vertexOutput ? kVsOutDiffuse + index : kPsInDiffuse + index;
+        if (index > kVertexOutSpecular - kVertexOutDiffuse) return -1;
+        return vertexOutput ? kVertexOutDiffuse + index : kPixelInDiffuse + index;
       case sh::DeclUsage::TexCoord:
-        if (index > 7) return -1;
-        return vertexOutput ? kVsOutTex0 + index : kPsInTex0 + index;
-      case sh::DeclUsage::Fog: return index == 0 ? (vertexOutput ? kVsOutFog : kPsInFog) : -1;
-      case sh::DeclUsage::PSize: return vertexOutput && index == 0 ? kVsOutPSize : -1;
+        if (index >= kTextureCoordinateSets) return -1;
+        return vertexOutput ? kVertexOutTex0 + index : kPixelInTex0 + index;
+      case sh::DeclUsage::Fog: return index == 0 ? (vertexOutput ? kVertexOutFog : kPixelInFog) : -1;
+      case sh::DeclUsage::PSize: return vertexOutput && index == 0 ? kVertexOutPSize : -1;
       default: return -1;
     }
   }
@@ -337,24 +341,24 @@ class Lowerer {
     p_.tempCount = rCount_;
     if (ps13_) {
       tBase_ = p_.tempCount;
-      p_.tempCount += 4;
+      p_.tempCount += count(RegType::Texture);
     }
     if (ver_.isVertex()) a0_ = p_.tempCount++;
     if (ver_.sm2plus()) p0_ = p_.tempCount++;
     if (ver_.isVertex() && ver_.major >= 3) {
       oBase_ = p_.tempCount;
-      p_.tempCount += 12;
+      p_.tempCount += count(RegType::Output);
     }
     if (ver_.isPixel() && ver_.major >= 3) {
       vBase_ = p_.tempCount;
-      p_.tempCount += 10;
+      p_.tempCount += count(RegType::Input);
     }
     if (ver_.isVertex()) {
-      p_.inputCount = 16;
-      p_.outputCount = kVsOutputCount;
+      p_.inputCount = count(RegType::Input);
+      p_.outputCount = kVertexOutputCount;
     } else {
-      p_.inputCount = kPsInputCount;
-      p_.outputCount = kPsOutputCount;
+      p_.inputCount = kPixelInputRegisters;
+      p_.outputCount = kPixelOutputRegisters;
     }
     p_.name = ver_.isVertex() ? "vertex shader" : "pixel shader";
   }
@@ -382,7 +386,7 @@ class Lowerer {
   // Color inputs v0/v1 of ps_1_x–2_x are saturated (and on the era's 8-bit grid in
   // hardware precision); done in place on the components the program reads.
   void clampColorInputs() {
-    if (!ver_.isPixel() || ver_.major >= 3) return;
+    if (!rules_.colorInputsSaturated) return;
     if (opt_.colorInputsInRange && !quantize_) return;
     uint8_t used[2] = {0, 0};
     for (const Instr& in : p_.code)
@@ -421,8 +425,7 @@ class Lowerer {
       p_.localConstants.assign(size_t(defF_.rbegin()->first + 1), -1);
       for (auto [c, imm] : defF_) p_.localConstants[size_t(c)] = imm;
     }
-    const int fileSize = ver_.isVertex() ? 256 : ps1x_ ? 8 : ver_.major >= 3 ? 224 : 32;
-    out_.floatConstantsRead = relativeConst_ ? fileSize : maxConstRead_ + 1;
+    out_.floatConstantsRead = relativeConst_ ? count(RegType::Const) : maxConstRead_ + 1;
   }
 
   // ------------------------------------------------------------------ operands
@@ -442,16 +445,16 @@ class Lowerer {
         break;
       case RegType::Input:
         if (ver_.isVertex()) {
-          if (n >= 16) failIn(in, fmt::format("input register v{} is out of range", n));
+          if (n >= count(RegType::Input)) failIn(in, fmt::format("input register v{} is out of range", n));
           r.file = RegFile::Input, r.index = uint16_t(n);
-          if (s.relative) r.relLo = 0, r.relHi = 16;
+          if (s.relative) r.relLo = 0, r.relHi = uint16_t(count(RegType::Input));
         } else if (ver_.major >= 3) {
-          if (n >= 10) failIn(in, fmt::format("input register v{} is out of range", n));
+          if (n >= count(RegType::Input)) failIn(in, fmt::format("input register v{} is out of range", n));
           r.file = RegFile::Temp, r.index = uint16_t(vBase_ + n);
-          r.relLo = uint16_t(vBase_), r.relHi = uint16_t(vBase_ + 10);
+          r.relLo = uint16_t(vBase_), r.relHi = uint16_t(vBase_ + count(RegType::Input));
         } else {
-          if (n >= 2) failIn(in, fmt::format("color input v{} is out of range (v0, v1)", n));
-          r.file = RegFile::Input, r.index = uint16_t(kPsInDiffuse + n);
+          if (n >= count(RegType::Input)) failIn(in, fmt::format("color input v{} is out of range (v0, v1)", n));
+          r.file = RegFile::Input, r.index = uint16_t(kPixelInDiffuse + n);
         }
         break;
       case RegType::Const:
@@ -460,8 +463,8 @@ class Lowerer {
           r.file = RegFile::Const, r.index = uint16_t(n);
         } else if (auto it = defF_.find(n); it != defF_.end()) {
           Vec4 v = p_.immediates[size_t(it->second)];
-          if (ps1x_)  // ps_1_x constants read clamped to [-1, 1], def and API alike
-            for (int c = 0; c < 4; ++c) v[c] = std::clamp(v[c], -1.0f, 1.0f);
+          if (ps1x_)  // ps_1_x constants read clamped to the version's range, def and API alike
+            for (int c = 0; c < 4; ++c) v[c] = std::clamp(v[c], rules_.defMin, rules_.defMax);
           r.file = RegFile::Imm, r.index = uint16_t(immIndex(v));
         } else {
           maxConstRead_ = std::max(maxConstRead_, n);
@@ -473,11 +476,11 @@ class Lowerer {
         if (ver_.isVertex()) {
           r.file = RegFile::Temp, r.index = uint16_t(a0_);
         } else if (ps13_) {
-          if (n >= 4) failIn(in, fmt::format("texture register t{} is out of range", n));
+          if (n >= count(RegType::Texture)) failIn(in, fmt::format("texture register t{} is out of range", n));
           r.file = RegFile::Temp, r.index = uint16_t(tBase_ + n);
         } else {
-          if (n >= 8) failIn(in, fmt::format("texture register t{} is out of range", n));
-          r.file = RegFile::Input, r.index = uint16_t(kPsInTex0 + n);
+          if (n >= count(RegType::Texture)) failIn(in, fmt::format("texture register t{} is out of range", n));
+          r.file = RegFile::Input, r.index = uint16_t(kPixelInTex0 + n);
         }
         break;
       case RegType::ConstInt:
@@ -490,7 +493,7 @@ class Lowerer {
         break;
       case RegType::MiscType:
         if (n > 1) failIn(in, fmt::format("misc register {} is not vPos or vFace", n));
-        r.file = RegFile::Input, r.index = uint16_t(n == 0 ? kPsInPosition : kPixelInFace);
+        r.file = RegFile::Input, r.index = uint16_t(n == 0 ? kPixelInPosition : kPixelInFace);
         break;
       case RegType::Predicate:
         if (p0_ < 0) failIn(in, "p0 is not available in this version");
@@ -528,35 +531,37 @@ class Lowerer {
         if (ver_.isVertex()) {
           r.file = RegFile::Temp, r.index = uint16_t(a0_);
         } else if (ps13_) {
-          if (n >= 4) failIn(in, fmt::format("texture register t{} is out of range", n));
+          if (n >= count(RegType::Texture)) failIn(in, fmt::format("texture register t{} is out of range", n));
           r.file = RegFile::Temp, r.index = uint16_t(tBase_ + n);
         } else {
           failIn(in, fmt::format("t{} is read-only in {}", n, ver_.name()));
         }
         break;
       case RegType::RastOut:
-        if (n > 2) failIn(in, fmt::format("rasterizer output {} is out of range", n));
+        if (n >= count(RegType::RastOut)) failIn(in, fmt::format("rasterizer output {} is out of range", n));
         r.file = RegFile::Output;
-        r.index = uint16_t(n == 0 ? kVsOutPosition : n == 1 ? kVsOutFog : kVsOutPSize);
+        r.index = uint16_t(n == 0 ? kVertexOutPosition : n == 1 ? kVertexOutFog : kVertexOutPSize);
         if (n > 0) r.mask = 0x1;
         break;
       case RegType::AttrOut:
-        if (n > 1) failIn(in, fmt::format("color output oD{} is out of range", n));
-        r.file = RegFile::Output, r.index = uint16_t(kVsOutDiffuse + n);
+        if (n >= count(RegType::AttrOut)) failIn(in, fmt::format("color output oD{} is out of range", n));
+        r.file = RegFile::Output, r.index = uint16_t(kVertexOutDiffuse + n);
         break;
       case RegType::Output:  // oT# (vs < 3), o# (vs_3_0)
         if (ver_.major >= 3) {
-          if (n >= 12) failIn(in, fmt::format("output register o{} is out of range", n));
+          if (n >= count(RegType::Output)) failIn(in, fmt::format("output register o{} is out of range", n));
           r.file = RegFile::Temp, r.index = uint16_t(oBase_ + n);
-          if (d.relative) r.rel = RelMode::Loop, r.relLo = uint16_t(oBase_), r.relHi = uint16_t(oBase_ + 12);
+          if (d.relative)
+            r.rel = RelMode::Loop, r.relLo = uint16_t(oBase_), r.relHi = uint16_t(oBase_ + count(RegType::Output));
         } else {
-          if (n >= 8) failIn(in, fmt::format("texture coordinate output oT{} is out of range", n));
-          r.file = RegFile::Output, r.index = uint16_t(kVsOutTex0 + n);
+          if (n >= count(RegType::TexCrdOut))
+            failIn(in, fmt::format("texture coordinate output oT{} is out of range", n));
+          r.file = RegFile::Output, r.index = uint16_t(kVertexOutTex0 + n);
         }
         break;
       case RegType::ColorOut:
-        if (n > 3) failIn(in, fmt::format("color output oC{} is out of range", n));
-        r.file = RegFile::Output, r.index = uint16_t(n);
+        if (n >= count(RegType::ColorOut)) failIn(in, fmt::format("color output oC{} is out of range", n));
+        r.file = RegFile::Output, r.index = uint16_t(kPixelOutColor + n);
         break;
       case RegType::DepthOut:
         r.file = RegFile::Output, r.index = uint16_t(kPixelOutDepth), r.mask = 0x1;
@@ -640,16 +645,15 @@ class Lowerer {
       lowerSimple(in, *s);
       return;
     }
-    for (const Macro& m : kMacros)
-      if (m.opcode == in.opcode) {
-        lowerMacro(in, m);
-        return;
-      }
+    if (const sh::OpcodeInfo* info = sh::findOpcode(in.opcode); info && info->matrixRows) {
+      lowerMatrix(in, *info);
+      return;
+    }
     switch (in.opcode) {
       case Opcode::MovA: lowerAddress(in, Op::Round); return;
       case Opcode::ExpP:
-        if (ver_.major < 2) lowerOne(in, Op::ExpP, {Reads::Scalar});
-        else lowerOne(in, Op::Exp2, {Reads::Scalar});
+        if (ver_.major < 2) lowerOne(in, Op::ExpP, scalarReads());
+        else lowerOne(in, Op::Exp2, scalarReads());
         return;
       case Opcode::SetP: {
         Target t = targetOf(in);
@@ -671,7 +675,9 @@ class Lowerer {
       lowerAddress(in, ver_.major < 2 ? Op::Floor : Op::Round);
       return;
     }
-    lowerOne(in, s.op, {s.reads[0], s.reads[1], s.reads[2]});
+    const sh::OpcodeInfo* info = sh::findOpcode(in.opcode);
+    lowerOne(in, s.op, info && info->has(sh::OpScalarSource) ? scalarReads()
+                                                              : std::array<Reads, 3>{s.reads[0], s.reads[1], s.reads[2]});
   }
 
   void lowerOne(const sh::Instruction& in, Op op, std::array<Reads, 3> reads) {
@@ -693,26 +699,28 @@ class Lowerer {
     commit(in, t);
   }
 
-  void lowerMacro(const sh::Instruction& in, const Macro& m) {
+  // m4x4 …: one dot product of the table's column count per row.
+  void lowerMatrix(const sh::Instruction& in, const sh::OpcodeInfo& m) {
     Target t = targetOf(in);
-    const uint8_t used = m.op == Op::Dp4 ? 0xF : kMaskXYZ;
+    const Op dot = m.matrixColumns == 4 ? Op::Dp4 : Op::Dp3;
+    const uint8_t used = dot == Op::Dp4 ? 0xF : kMaskXYZ;
     Src v = srcOf(in, in.src[0], used);
     // Row k is register (matrix + k) of the same file, each resolved on its own
     // (a row may be a local def).
     std::vector<Src> rows;
     bool overlap = sameRegister(t.work, v);
-    for (int k = 0; k < m.rows; ++k) {
+    for (int k = 0; k < m.matrixRows; ++k) {
       sh::SrcParam row = in.src[1];
       row.index = uint16_t(row.index + k);
       rows.push_back(srcOf(in, row, used));
       overlap |= sameRegister(t.work, rows.back());
     }
     Dst d = overlap ? dst(RegFile::Temp, scratch(), t.work.mask) : t.work;
-    for (int k = 0; k < m.rows; ++k) {
+    for (int k = 0; k < m.matrixRows; ++k) {
       if (!(t.work.mask >> k & 1)) continue;
       Dst row = d;
       row.mask = uint8_t(1u << k);
-      modifiers(p_.emit(m.op, row, v, rows[size_t(k)]), in);
+      modifiers(p_.emit(dot, row, v, rows[size_t(k)]), in);
     }
     if (overlap) p_.emit(Op::Mov, t.work, reg(RegFile::Temp, d.index));
     commit(in, t);
@@ -742,7 +750,7 @@ class Lowerer {
   }
 
   Src bumpMatrix(int stage) {
-    if (stage < 0 || stage >= 8) fail("bump environment of stage {} is out of range", stage);
+    if (stage < 0 || stage >= kBumpEnvStages) fail("bump environment of stage {} is out of range", stage);
     out_.bumpEnvStages |= uint8_t(1u << stage);
     return reg(RegFile::Const, kConstBumpEnv + 2 * stage);
   }
@@ -750,7 +758,7 @@ class Lowerer {
   // ------------------------------------------------------------------ texture instructions
 
   Instr& sampleInto(Op op, Dst d, Src coord, int sampler) {
-    if (sampler < 0 || sampler >= 16) fail("sampler s{} is out of range", sampler);
+    if (sampler < 0 || sampler >= kSamplerCount) fail("sampler s{} is out of range", sampler);
     out_.samplersUsed |= 1u << sampler;
     Instr& i = p_.emit(op, d, coord);
     i.sampler = uint8_t(sampler);
@@ -758,8 +766,8 @@ class Lowerer {
   }
 
   Src texCoord(int stage, uint8_t swizzle = kSwzXYZW) {
-    if (stage < 0 || stage >= 8) fail("texture coordinate set {} is out of range", stage);
-    return reg(RegFile::Input, kPsInTex0 + stage, swizzle);
+    if (stage < 0 || stage >= kTextureCoordinateSets) fail("texture coordinate set {} is out of range", stage);
+    return reg(RegFile::Input, kPixelInTex0 + stage, swizzle);
   }
 
   bool lowerTexture(const sh::Instruction& in) {
@@ -865,7 +873,7 @@ class Lowerer {
               source());
     };
     auto check = [&](int srcs) {
-      if (m < 0 || m >= 4) failIn(in, fmt::format("texture register t{} is out of range", m));
+      if (m < 0 || m >= count(RegType::Texture)) failIn(in, fmt::format("texture register t{} is out of range", m));
       if (in.srcCount < srcs) failIn(in, "missing source operand");
     };
     switch (in.opcode) {
@@ -1049,7 +1057,7 @@ class Lowerer {
   // vs_3_0: o# temps to the outputs their dcl names, component positions kept.
   void epilogue() {
     if (oBase_ < 0) return;
-    for (int o = 0; o < 12; ++o) {
+    for (size_t o = 0; o < outMap_.size(); ++o) {
       for (int c = 0; c < 4; ++c) {
         const int target = outMap_[o][c];
         if (target < 0) continue;
@@ -1059,8 +1067,8 @@ class Lowerer {
         bool first = true;
         for (int k = 0; k < c; ++k) first &= outMap_[o][k] != target;
         if (!first) continue;
-        p_.emit(Op::Mov, dst(RegFile::Output, target, target == kVsOutFog || target == kVsOutPSize ? 0x1 : mask),
-                reg(RegFile::Temp, oBase_ + o, target == kVsOutFog || target == kVsOutPSize ? replicate(kSwzXYZW, c)
+        p_.emit(Op::Mov, dst(RegFile::Output, target, target == kVertexOutFog || target == kVertexOutPSize ? 0x1 : mask),
+                reg(RegFile::Temp, oBase_ + o, target == kVertexOutFog || target == kVertexOutPSize ? replicate(kSwzXYZW, c)
                                                                                             : kSwzXYZW));
       }
     }

@@ -20,6 +20,7 @@
 
 #include "hlsl/constant_table.h"
 #include "hlsl/ir.h"
+#include "refx/shader/opcode_table.h"
 #include "refx/shader/validator.h"
 #include "refx/shader/version_rules.h"
 
@@ -591,7 +592,9 @@ class CodeGen {
     m.dst = d;
     m.srcCount = 0;
     for (const MSrc& s : srcs) m.src[m.srcCount++] = s;
-    m.shape = shape;
+    // rcp, exp, pow, sincos …: the opcode table's scalar instructions.
+    const shader::OpcodeInfo* info = shader::findOpcode(op);
+    m.shape = info && info->has(shader::OpScalarSource) ? Shape::Scalar : shape;
     m.control = control;
     m.where = where_;
     code_.push_back(m);
@@ -757,7 +760,7 @@ class CodeGen {
         } else {
           int t = newTemp(1);
           push(Opcode::Dp3, dst(t, 1), {src(in.src[0]), src(in.src[0])}, Shape::Positional);
-          push(Opcode::Rsq, dst(t, 1), {vsrc(t, {0, 0, 0, 0})}, Shape::Scalar);
+          push(Opcode::Rsq, dst(t, 1), {vsrc(t, {0, 0, 0, 0})});
           push(Opcode::Mul, dst(d, 3, in.saturate), {src(in.src[0]), vsrc(t, {0, 0, 0, 0})});
         }
         return;
@@ -789,16 +792,16 @@ class CodeGen {
           MSrc a = src(in.src[0]), b = src(in.src[1]);
           a.swizzle.fill(in.src[0].swizzle[0]);
           b.swizzle.fill(in.src[1].swizzle[0]);
-          push(Opcode::Pow, dst(d, 1, in.saturate), {a, b}, Shape::Scalar);
+          push(Opcode::Pow, dst(d, 1, in.saturate), {a, b});
         } else {
           int t = newTemp(1);
           MSrc a = src(in.src[0]);
           a.swizzle.fill(in.src[0].swizzle[0]);
-          push(Opcode::Log, dst(t, 1), {a}, Shape::Scalar);
+          push(Opcode::Log, dst(t, 1), {a});
           MSrc b = src(in.src[1]);
           b.swizzle.fill(in.src[1].swizzle[0]);
           push(Opcode::Mul, dst(t, 1), {vsrc(t, {0, 0, 0, 0}), b});
-          push(Opcode::Exp, dst(d, 1, in.saturate), {vsrc(t, {0, 0, 0, 0})}, Shape::Scalar);
+          push(Opcode::Exp, dst(d, 1, in.saturate), {vsrc(t, {0, 0, 0, 0})});
         }
         return;
       case IrOp::SinCos: sinCos(in); return;
@@ -917,7 +920,7 @@ class CodeGen {
   void scalar(Opcode op, const IrInst& in) {
     MSrc a = src(in.src[0]);
     a.swizzle.fill(in.src[0].swizzle[0]);
-    push(op, dst(in.dst, 1, in.saturate), {a}, Shape::Scalar);
+    push(op, dst(in.dst, 1, in.saturate), {a});
   }
 
   // The builder has reduced the argument to [-pi, pi]; .x = cos, .y = sin.
@@ -930,13 +933,13 @@ class CodeGen {
     a.swizzle.fill(in.src[0].swizzle[0]);
     MDst md = dst(in.dst, 2, in.saturate);
     if (v_.major >= 3) {
-      push(Opcode::SinCos, md, {a}, Shape::Scalar);
+      push(Opcode::SinCos, md, {a});
     } else {
       MSrc c1, c2;
       c1.type = c2.type = RegType::Const;
       c1.index = vectorDef({-1.55009923e-6f, -2.17013894e-5f, 0.00260416674f, 0.00026041668f});
       c2.index = vectorDef({-0.020833334f, -0.125f, 1.0f, 0.5f});
-      push(Opcode::SinCos, md, {a, c1, c2}, Shape::Scalar);
+      push(Opcode::SinCos, md, {a, c1, c2});
     }
   }
 

@@ -27,6 +27,7 @@
 
 #include "hlsl/constant_table.h"
 #include "hlsl/ps1x_program.h"
+#include "refx/shader/opcode_table.h"
 #include "refx/shader/version_rules.h"
 
 namespace refx::hlsl {
@@ -1304,7 +1305,7 @@ class Ps1xCodeGen {
       for (int c : comp)
         if (c == 3)
           refuse(where_, "TEXCOORD{}.w cannot be read in {}: {} delivers x, y and z", h.texcoordIndex, profile(),
-                 ps14_ ? "texcrd" : "texcoord");
+                 shader::mnemonicIn(shader::Opcode::TexCoord, 0, v_));
     if (h.type == RegType::Input && h.fixed && ps14_ && phase_ == 1)
       refuse(where_, "COLOR{} cannot be read in phase 1 of {} (colors arrive in phase 2)", h.index, profile());
     // physical components of the value

@@ -15,6 +15,7 @@
 #include "state_support.h"
 #include "refx/core/diagnostics.h"
 #include "refx/resource/sampler.h"
+#include "refx/shader/version_rules.h"
 #include "render_targets.h"
 #include "shader_lowering.h"
 #include "validate.h"
@@ -272,11 +273,12 @@ shader::ValidationCaps Device::shaderValidationCaps() const {
 
 exec::ShaderLoweringOptions pipeline::shaderLoweringOptions(const Device& device, shader::Version version) {
   exec::ShaderLoweringOptions o;
-  o.precision = device.options().precision == Precision::Hardware ? exec::Precision::Hardware : exec::Precision::Exact;
+  o.precision = device.options().precision;
   // PixelShader1xMaxValue of the profile; a profile without pixel shaders gets the
   // version's minimum (1 for ps_1_1-1_3, 8 for ps_1_4).
   const float maxValue = device.caps().pixelShader1xMaxValue;
-  o.pixelShader1xMaxValue = maxValue > 0 ? maxValue : version.atLeast(1, 4) ? 8.0f : 1.0f;
+  const shader::VersionRules* rules = shader::findVersionRules(version);
+  o.pixelShader1xMaxValue = maxValue > 0 ? maxValue : rules ? std::max(rules->minRegisterRange, 1.0f) : 1.0f;
   // Vertex colors reach the pixel stage within [0,1] (clamped per vertex below ps_3_0).
   o.colorInputsInRange = true;
   // ps_1_1-1_3 `tex t(m)` divides by the coordinates' last component when stage m has

@@ -4,24 +4,24 @@
 #pragma once
 #include <array>
 
+#include "refx/exec/abi.h"
 #include "refx/exec/ir.h"
 #include "refx/pipeline/state.h"
 #include "refx/resource/texture.h"
 
 namespace refx::pipeline {
 
-// Pixel program register conventions shared by fixed function and pixel shaders.
-enum PixelInput : int {
-  kPixelInDiffuse = 0,
-  kPixelInSpecular = 1,
-  // 2..9 = coordinates for stage/texture register 0..7 (4 components; when
-  // TEXTURETRANSFORMFLAGS has PROJECTED the divisor is already in .w)
-  kPixelInTex0 = 2,
-  kPixelInFog = 10,       // .x = vertex fog factor f (1 = no fog)
-  kPixelInPosition = 11,  // (screen x, screen y, z in [0,1], eye-space w)
-  kPixelInputCount = 12
-};
-enum PixelOutput : int { kPixelOutColor = 0, kPixelOutputCount = 1 };
+// Pixel program register conventions shared by fixed function and pixel shaders
+// (exec/abi.h). Fixed-function programs read the interpolated inputs and write the
+// color alone.
+using exec::kPixelInDiffuse;
+using exec::kPixelInSpecular;
+using exec::kPixelInTex0;
+using exec::kPixelInFog;
+using exec::kPixelInPosition;
+constexpr int kPixelInputCount = exec::kPixelInterpolatedInputCount;
+using exec::kPixelOutColor;
+constexpr int kPixelOutputCount = exec::kPixelOutColor + 1;
 
 struct FixedFunctionPixelConfig {
   std::array<const Texture*, 8> textures{};  // texture bound to sampler n (nullptr: none)

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 
+#include "refx/exec/abi.h"
 #include "refx/exec/ir.h"
 #include "refx/pipeline/state.h"
 
@@ -25,16 +26,14 @@ enum VertexInput : int {
   kVertexInputCount = 17,
 };
 
-// Vertex outputs as a vertex shader writes them.
-enum VertexOutput : int {
-  kVertexOutPosition = 0,  // clip space (x,y,z,w); pretransformed: (sx, sy, sz, rhw) passed through
-  kVertexOutDiffuse = 1,
-  kVertexOutSpecular = 2,
-  kVertexOutTex0 = 3,  // ..10: coordinates for texture stage 0..7
-  kVertexOutFog = 11,  // .x (replicated)
-  kVertexOutPSize = 12,  // .x (replicated)
-  kVertexOutputCount = 13,
-};
+// Vertex outputs as a vertex shader writes them (exec/abi.h).
+using exec::kVertexOutPosition;
+using exec::kVertexOutDiffuse;
+using exec::kVertexOutSpecular;
+using exec::kVertexOutTex0;
+using exec::kVertexOutFog;
+using exec::kVertexOutPSize;
+using exec::kVertexOutputCount;
 
 // What the vertex declaration supplies. Absent inputs are filled by the fetcher:
 // diffuse (1,1,1,1), specular (0,0,0,0), position w = 1, missing texcoord components 0.

@@ -8,6 +8,7 @@
 
 #include "refx/core/batch.h"
 #include "refx/core/thread_pool.h"
+#include "refx/exec/abi.h"
 #include "refx/exec/interpreter.h"
 #include "refx/pipeline/device.h"
 
@@ -17,7 +18,7 @@ constexpr int kTileSize = 64;
 constexpr int kSubPixelBits = 8;  // edge functions in 1/256 pixel units
 
 // A vertex after the vertex stage: clip-space position and all vertex outputs.
-constexpr int kVaryingCount = 13;  // vertex outputs 0..12 (see ff_vertex.h)
+constexpr int kVaryingCount = exec::kVertexOutputCount;  // every vertex output (exec/abi.h)
 struct ShadedVertex {
   Vec4 out[kVaryingCount];  // out[0] = clip position (or screen position when pretransformed)
 };
@@ -66,7 +67,7 @@ struct RasterDraw {
   const exec::Program* pixelProgram = nullptr;
   exec::ExecContext execContext;
   std::vector<InterpolatedInput> inputs;
-  bool usesPosition = false;  // pixel input kPixelInPosition read
+  bool usesPosition = false;  // pixel input exec::kPixelInPosition read
   bool usesFace = false;      // pixel input exec::kPixelInFace read (vFace: +1 clockwise, -1 not)
   bool shaderDepth = false;   // the program writes the depth (output exec::kPixelOutDepth .x)
   std::vector<Primitive> prims;

@@ -403,8 +403,8 @@ class Parser {
     // m3x3 r0, v3, c0 (as the DirectX 8 shaders write it) writes the components the
     // instruction computes: .xyz for m3x3/m4x3, .xy for m3x2, the only masks D3D9 accepts.
     if (ins.hasDst && !dstMaskGiven_) {
-      if (ins.opcode == Opcode::M3x3 || ins.opcode == Opcode::M4x3) ins.dst.writeMask = 0x7;
-      if (ins.opcode == Opcode::M3x2) ins.dst.writeMask = 0x3;
+      if (const OpcodeInfo* info = findOpcode(ins.opcode); info && info->matrixRows)
+        ins.dst.writeMask = uint8_t((1u << info->matrixRows) - 1);  // one component per row
     }
     if (ins.opcode == Opcode::Dcl && ins.dst.type != RegType::Sampler &&
         ins.textureType != TextureType::Unknown) {
@@ -651,7 +651,7 @@ class Parser {
   }
 
   std::string registerText(RegType t, uint32_t index) const {
-    return registerDisplayName(t, index, shader_.version);
+    return registerName(t, index, shader_.version);
   }
 
   // `[a0.x + n]`, `[n + a0.x]`, `[aL]`, `[5]`: adds the constant part to `index`.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <span>
 #include <vector>
 
 #include <fmt/format.h>
@@ -9,40 +11,61 @@
 namespace refx::shader::asmtables {
 namespace {
 
-constexpr uint32_t kMax = 2047;  // 11-bit register number
-const RegisterName kVertexRegisters[] = {
-    {"r", RegType::Temp, true, 0, kMax},        {"v", RegType::Input, true, 0, kMax},
-    {"c", RegType::Const, true, 0, 8191},       {"a", RegType::Addr, true, 0, 0},
-    {"al", RegType::Loop, false, 0, 0},         {"i", RegType::ConstInt, true, 0, kMax},
-    {"b", RegType::ConstBool, true, 0, kMax},   {"s", RegType::Sampler, true, 0, kMax},
-    {"l", RegType::Label, true, 0, kMax},       {"p", RegType::Predicate, true, 0, 0},
+// The register files assembly names in each shader type, with the highest number each
+// encodes (11 bits; c# reaches 8191 through CONST2..4). Their letters are the register
+// namer's spelling (version_rules.h) in lower case.
+struct AssembledFile {
+  RegType type;
+  uint32_t maxIndex;
 };
-const RegisterName kVertexOutputsSm1Sm2[] = {
-    {"opos", RegType::RastOut, false, 0, 0},    {"ofog", RegType::RastOut, false, 1, 1},
-    {"opts", RegType::RastOut, false, 2, 2},    {"od", RegType::AttrOut, true, 0, kMax},
-    {"ot", RegType::TexCrdOut, true, 0, kMax},
+constexpr uint32_t kMax = 2047;
+constexpr AssembledFile kVertexFiles[] = {
+    {RegType::Temp, kMax},     {RegType::Input, kMax},     {RegType::Const, 8191},  {RegType::Addr, 0},
+    {RegType::Loop, 0},        {RegType::ConstInt, kMax},  {RegType::ConstBool, kMax}, {RegType::Sampler, kMax},
+    {RegType::Label, kMax},    {RegType::Predicate, 0},
 };
-const RegisterName kVertexOutputsSm3[] = {
-    {"o", RegType::Output, true, 0, kMax},
+constexpr AssembledFile kVertexOutputsSm1Sm2[] = {
+    {RegType::RastOut, 0}, {RegType::AttrOut, kMax}, {RegType::TexCrdOut, kMax}};
+constexpr AssembledFile kVertexOutputsSm3[] = {{RegType::Output, kMax}};
+constexpr AssembledFile kPixelFiles[] = {
+    {RegType::Temp, kMax},     {RegType::Input, kMax},  {RegType::Const, 8191},    {RegType::Sampler, kMax},
+    {RegType::ConstInt, kMax}, {RegType::ConstBool, kMax}, {RegType::Label, kMax}, {RegType::Predicate, 0},
+    {RegType::Loop, 0},        {RegType::ColorOut, kMax}, {RegType::DepthOut, 0},  {RegType::MiscType, 0},
 };
-const RegisterName kPixelRegisters[] = {
-    {"r", RegType::Temp, true, 0, kMax},          {"v", RegType::Input, true, 0, kMax},
-    {"c", RegType::Const, true, 0, 8191},         {"s", RegType::Sampler, true, 0, kMax},
-    {"i", RegType::ConstInt, true, 0, kMax},      {"b", RegType::ConstBool, true, 0, kMax},
-    {"l", RegType::Label, true, 0, kMax},         {"p", RegType::Predicate, true, 0, 0},
-    {"al", RegType::Loop, false, 0, 0},           {"oc", RegType::ColorOut, true, 0, kMax},
-    {"odepth", RegType::DepthOut, false, 0, 0},   {"vpos", RegType::MiscType, false, 0, 0},
-    {"vface", RegType::MiscType, false, 1, 1},
-};
-const RegisterName kPixelTexture[] = {
-    {"t", RegType::Texture, true, 0, kMax},
-};
+constexpr AssembledFile kPixelTexture[] = {{RegType::Texture, kMax}};
 
-template <size_t N>
-const RegisterName* findIn(const RegisterName (&table)[N], std::string_view letters) {
-  for (const RegisterName& r : table)
-    if (letters == r.letters) return &r;
-  return nullptr;
+std::string lowerCase(std::string_view s) {
+  std::string r(s);
+  for (char& c : r) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return r;
+}
+
+// Numbered files by their prefix (r#, oT#); the others by each fixed name (oPos = RASTOUT 0).
+std::vector<RegisterName> registerLetters(std::initializer_list<std::span<const AssembledFile>> groups, Version v) {
+  std::vector<RegisterName> out;
+  for (std::span<const AssembledFile> files : groups)
+    for (const AssembledFile& f : files) {
+      const RegisterNaming* n = findRegisterNaming(f.type, v);
+      if (!n) continue;
+      if (*n->prefix && !n->fixedNames[0]) {
+        out.push_back({lowerCase(n->prefix), f.type, true, 0, f.maxIndex});
+        continue;
+      }
+      for (uint32_t i = 0; i < n->fixedNames.size() && n->fixedNames[i]; ++i)
+        out.push_back({lowerCase(n->fixedNames[i]), f.type, false, i, i});
+    }
+  return out;
+}
+
+const std::vector<RegisterName>& registerLettersOf(Version v) {
+  static const std::vector<RegisterName> vs1 =
+      registerLetters({kVertexFiles, kVertexOutputsSm1Sm2}, {ShaderType::Vertex, 1, 1});
+  static const std::vector<RegisterName> vs3 =
+      registerLetters({kVertexFiles, kVertexOutputsSm3}, {ShaderType::Vertex, 3, 0});
+  static const std::vector<RegisterName> ps1 = registerLetters({kPixelFiles, kPixelTexture}, {ShaderType::Pixel, 2, 0});
+  static const std::vector<RegisterName> ps3 = registerLetters({kPixelFiles}, {ShaderType::Pixel, 3, 0});
+  if (v.isVertex()) return v.major >= 3 ? vs3 : vs1;
+  return v.major >= 3 ? ps3 : ps1;
 }
 
 int editDistance(std::string_view a, std::string_view b) {
@@ -118,22 +141,35 @@ std::optional<Version> parseVersionName(std::string_view text) {
   return v;
 }
 
+// D3DSHADER_COMPARISON order: gt 1 … le 6.
+constexpr std::array<std::string_view, 7> kComparisonNames = {"", "gt", "eq", "ge", "lt", "ne", "le"};
+
 Comparison findComparison(std::string_view s) {
-  static constexpr std::array<std::string_view, 7> names = {"", "gt", "eq", "ge", "lt", "ne", "le"};
-  for (size_t i = 1; i < names.size(); ++i)
-    if (s == names[i]) return Comparison(i);
+  for (size_t i = 1; i < kComparisonNames.size(); ++i)
+    if (s == kComparisonNames[i]) return Comparison(i);
   return Comparison::None;
 }
 
+std::string_view comparisonName(Comparison c) {
+  return size_t(c) < kComparisonNames.size() ? kComparisonNames[size_t(c)] : "";
+}
+
+struct ShiftSpelling {
+  std::string_view name;
+  int8_t shift;
+};
+constexpr ShiftSpelling kShifts[] = {{"x2", 1}, {"x4", 2}, {"x8", 3}, {"d2", -1}, {"d4", -2}, {"d8", -3}};
+
 std::optional<int8_t> findShift(std::string_view s) {
-  struct E {
-    std::string_view name;
-    int8_t shift;
-  };
-  static constexpr E table[] = {{"x2", 1}, {"x4", 2}, {"x8", 3}, {"d2", -1}, {"d4", -2}, {"d8", -3}};
-  for (const E& e : table)
+  for (const ShiftSpelling& e : kShifts)
     if (s == e.name) return e.shift;
   return std::nullopt;
+}
+
+std::string_view shiftName(int8_t shift) {
+  for (const ShiftSpelling& e : kShifts)
+    if (e.shift == shift) return e.name;
+  return "";
 }
 
 std::optional<uint8_t> findResultModifier(std::string_view s) {
@@ -160,14 +196,18 @@ const char* textureTypeName(TextureType t) {
   }
 }
 
+// D3DDECLUSAGE order.
+constexpr std::array<std::string_view, 14> kUsageNames = {
+    "position", "blendweight", "blendindices", "normal", "psize", "texcoord", "tangent",
+    "binormal", "tessfactor",  "positiont",    "color",  "fog",   "depth",    "sample"};
+
 std::optional<DeclUsage> findUsage(std::string_view s) {
-  static constexpr std::array<std::string_view, 14> names = {
-      "position", "blendweight", "blendindices", "normal", "psize", "texcoord", "tangent",
-      "binormal", "tessfactor",  "positiont",    "color",  "fog",   "depth",    "sample"};
-  for (size_t i = 0; i < names.size(); ++i)
-    if (s == names[i]) return DeclUsage(i);
+  for (size_t i = 0; i < kUsageNames.size(); ++i)
+    if (s == kUsageNames[i]) return DeclUsage(i);
   return std::nullopt;
 }
+
+std::string_view usageName(DeclUsage u) { return size_t(u) < kUsageNames.size() ? kUsageNames[size_t(u)] : ""; }
 
 OperandForm operandForm(Opcode op, Version v) {
   // The encoder's table, so that what is parsed is exactly what gets encoded.
@@ -176,12 +216,9 @@ OperandForm operandForm(Opcode op, Version v) {
 }
 
 const RegisterName* findRegisterName(std::string_view letters, Version v) {
-  if (v.isVertex()) {
-    if (auto* r = findIn(kVertexRegisters, letters)) return r;
-    return v.major >= 3 ? findIn(kVertexOutputsSm3, letters) : findIn(kVertexOutputsSm1Sm2, letters);
-  }
-  if (auto* r = findIn(kPixelRegisters, letters)) return r;
-  return v.major < 3 ? findIn(kPixelTexture, letters) : nullptr;
+  for (const RegisterName& r : registerLettersOf(v))
+    if (letters == r.letters) return &r;
+  return nullptr;
 }
 
 std::string registerHelp(Version v) {
@@ -192,34 +229,6 @@ std::string registerHelp(Version v) {
     s += v.major >= 3 ? "r#, v#, c#, s#, b#, i#, p0, aL, vPos, vFace, oC#, oDepth"
                       : "r#, v#, c#, t#, s#, b#, i#, p0, oC#, oDepth";
   return s;
-}
-
-std::string registerDisplayName(RegType type, uint32_t index, Version v) {
-  struct D {
-    RegType type;
-    const char* name;
-    bool indexed;
-  };
-  static constexpr D vs[] = {{RegType::Temp, "r", true},       {RegType::Input, "v", true},
-                             {RegType::Const, "c", true},      {RegType::Addr, "a", true},
-                             {RegType::AttrOut, "oD", true},   {RegType::TexCrdOut, "oT", true},
-                             {RegType::ConstInt, "i", true},   {RegType::ConstBool, "b", true},
-                             {RegType::Sampler, "s", true},    {RegType::Loop, "aL", false},
-                             {RegType::Label, "l", true},      {RegType::Predicate, "p", true}};
-  static constexpr D ps[] = {{RegType::Temp, "r", true},       {RegType::Input, "v", true},
-                             {RegType::Const, "c", true},      {RegType::Texture, "t", true},
-                             {RegType::ColorOut, "oC", true},  {RegType::DepthOut, "oDepth", false},
-                             {RegType::ConstInt, "i", true},   {RegType::ConstBool, "b", true},
-                             {RegType::Sampler, "s", true},    {RegType::Loop, "aL", false},
-                             {RegType::Label, "l", true},      {RegType::Predicate, "p", true}};
-  if (v.isVertex() && type == RegType::RastOut) return index == 0 ? "oPos" : index == 1 ? "oFog" : "oPts";
-  if (v.isVertex() && v.major >= 3 && type == RegType::Output) return fmt::format("o{}", index);
-  if (v.isPixel() && type == RegType::MiscType) return index == 0 ? "vPos" : "vFace";
-  const D* begin = v.isVertex() ? std::begin(vs) : std::begin(ps);
-  const D* end = v.isVertex() ? std::end(vs) : std::end(ps);
-  for (const D* d = begin; d != end; ++d)
-    if (d->type == type) return d->indexed ? fmt::format("{}{}", d->name, index) : std::string(d->name);
-  return fmt::format("register type {}", int(type));
 }
 
 }  // namespace refx::shader::asmtables

@@ -13,6 +13,8 @@
 #include "refx/shader/constant_table.h"
 #include "refx/shader/opcode_table.h"
 #include "refx/shader/validator.h"
+#include "refx/shader/version_rules.h"
+#include "shader/assembler_tables.h"
 
 
 namespace refx::shader {
@@ -21,14 +23,11 @@ namespace {
 
 constexpr char kComponents[] = "xyzw";
 
-const char* const kUsageNames[] = {"position", "blendweight", "blendindices", "normal",   "psize",
-                                   "texcoord", "tangent",     "binormal",     "tessfactor", "positiont",
-                                   "color",    "fog",         "depth",        "sample"};
-
-const char* const kComparisonSuffix[] = {"", "_gt", "_eq", "_ge", "_lt", "_ne", "_le", ""};
-
-// Shift nibble as the instruction suffix (ps_1_x); index = shift + 3.
-const char* const kShiftSuffix[] = {"_d8", "_d4", "_d2", "", "_x2", "_x4", "_x8"};
+// "_gt" … for ifc/breakc/setp; nothing for the reserved values 0 and 7.
+std::string comparisonSuffix(uint8_t control) {
+  const std::string_view name = asmtables::comparisonName(Comparison(control & 7));
+  return name.empty() ? std::string() : "_" + std::string(name);
+}
 
 // Float literal with the fewest digits that reads back to the same bits.
 std::string floatText(uint32_t bits) {
@@ -103,7 +102,8 @@ std::string srcText(const SrcParam& s, Version version) {
 // The assembler reads a missing mask on m3x3/m4x3/m3x2 as the components they compute
 // (.xyz/.xy), so a full mask is written out there to reassemble to the same token.
 std::string dstText(const DstParam& d, Opcode op, Version version) {
-  const bool maskImpliedByOpcode = op == Opcode::M3x3 || op == Opcode::M4x3 || op == Opcode::M3x2;
+  const OpcodeInfo* info = findOpcode(op);
+  const bool maskImpliedByOpcode = info && info->matrixRows > 0 && info->matrixRows < 4;
   const bool full = (d.writeMask & 0xF) == 0xF;
   return registerText(d.type, d.index, d.relative, version.sm2plus() ? d.rel : RelativeAddress{}, version) +
          (full && maskImpliedByOpcode ? std::string(".xyzw") : maskText(d.writeMask));
@@ -111,7 +111,9 @@ std::string dstText(const DstParam& d, Opcode op, Version version) {
 
 std::string resultModifierText(const DstParam& d) {
   std::string s;
-  if (d.shift >= -3 && d.shift <= 3) s += kShiftSuffix[d.shift + 3];
+  if (d.shift >= -3 && d.shift <= 3) {
+    if (d.shift != 0) s += "_" + std::string(asmtables::shiftName(d.shift));
+  }
   else s += d.shift > 0 ? fmt::format("_x{}", 1 << d.shift) : fmt::format("_d{}", 1 << -d.shift);
   if (d.resultMod & ResultSaturate) s += "_sat";
   if (d.resultMod & ResultPartialPrecision) s += "_pp";
@@ -122,9 +124,10 @@ std::string resultModifierText(const DstParam& d) {
 std::string dclMnemonic(const Instruction& ins, Version version) {
   const RegType t = ins.dst.type;
   if (t == RegType::Sampler) {
-    static const char* const types[] = {"dcl", "dcl_1d", "dcl_2d", "dcl_cube", "dcl_volume"};
-    unsigned tt = unsigned(ins.textureType);
-    return tt < 5 ? types[tt] : fmt::format("dcl_textype{}", tt);
+    const unsigned tt = unsigned(ins.textureType);
+    if (tt == unsigned(TextureType::Unknown)) return "dcl";
+    return tt <= unsigned(TextureType::Volume) ? fmt::format("dcl_{}", asmtables::textureTypeName(ins.textureType))
+                                               : fmt::format("dcl_textype{}", tt);
   }
   // ps_2_0/2_x v#/t# and ps_3_0 vPos/vFace carry no usage: plain `dcl`.
   const bool plain = ins.usage == DeclUsage::Position && ins.usageIndex == 0 && version.isPixel() &&
@@ -132,7 +135,8 @@ std::string dclMnemonic(const Instruction& ins, Version version) {
   if (plain) return "dcl";
   unsigned u = unsigned(ins.usage);
   std::string s = "dcl_";
-  s += u < std::size(kUsageNames) ? kUsageNames[u] : fmt::format("usage{}", u);
+  const std::string_view name = asmtables::usageName(ins.usage);
+  s += name.empty() ? fmt::format("usage{}", u) : std::string(name);
   if (ins.usageIndex != 0) s += std::to_string(ins.usageIndex);
   return s;
 }
@@ -143,7 +147,7 @@ std::string mnemonic(const Instruction& ins, Version version) {
   // ifc/breakc/setp: the first spelling that takes a comparison suffix (if_gt, break_lt, setp_eq).
   for (const Mnemonic& m : allMnemonics())
     if (m.kind == MnemonicKind::Compare && m.compareOpcode == ins.opcode)
-      return m.name + std::string(kComparisonSuffix[ins.control & 7]);
+      return m.name + comparisonSuffix(ins.control);
   return std::string(mnemonicIn(ins.opcode, ins.control, version));
 }
 

@@ -1,6 +1,8 @@
-// One table per shader version (registers-and-limits.md, bytecode.md §10).
+// One table per shader version (registers-and-limits.md, bytecode.md §10), and the
+// assembly names of the register files.
 #include "refx/shader/version_rules.h"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 
@@ -241,47 +243,112 @@ constexpr FlowLimits kFlow20{1, 1, 16, 0, 16, 16};
 constexpr FlowLimits kFlow2x{4, 4, 16, 24, 16, 16};
 constexpr FlowLimits kFlow30{4, 4, 24, 24, 0, 2048};
 
+// The last two columns: the least ps_1_x register range (registers-and-limits.md §2:
+// PixelShader1xMaxValue is at least 1 for ps_1_1-1_3 parts, 8 for ps_1_4) and whether
+// v0/v1 are saturated color inputs (ps_1_x-2_x; ps_3_0 inputs are full float).
 // clang-format off
 constexpr VersionRules kVs11{vs(1, 1), "vs_1_1", vs11Ops, vs11Regs, kVsMods, 0, 0, 0,
     SwizzleRule::Arbitrary, WriteMaskRule::Any, IndexA0X, {128}, kNoFlow, kNoMin, kNoMax,
-    false, false, false, false, false, 0, false};
+    false, false, false, false, false, 0, false,
+    0.0f, false};
 constexpr VersionRules kVs20{vs(2, 0), "vs_2_0", vs20Ops, vs20Regs, kVsMods, 0, 0, 0,
     SwizzleRule::Arbitrary, WriteMaskRule::Any, IndexA0Any | IndexLoop, {256}, kFlow20, kNoMin,
-    kNoMax, false, false, false, true, true, 0, false};
+    kNoMax, false, false, false, true, true, 0, false,
+    0.0f, false};
 constexpr VersionRules kVs2x{vs(2, 1), "vs_2_x", vs2xOps, vs2xRegs, kVsMods, 0, 0, 0,
     SwizzleRule::Arbitrary, WriteMaskRule::Any, IndexA0Any | IndexLoop, {256}, kFlow2x, kNoMin,
-    kNoMax, false, false, true, true, true, 0, false};
+    kNoMax, false, false, true, true, true, 0, false,
+    0.0f, false};
 constexpr VersionRules kVs30{vs(3, 0), "vs_3_0", vs30Ops, vs30Regs, kVs30Mods, ResultSaturate, 0, 0,
     SwizzleRule::Arbitrary, WriteMaskRule::Any, IndexA0Any | IndexLoop, {512}, kFlow30, kNoMin,
-    kNoMax, false, false, true, true, true, 0, false};
+    kNoMax, false, false, true, true, true, 0, false,
+    0.0f, false};
 
 constexpr VersionRules kPs11{ps(1, 1), "ps_1_1", ps11Ops, ps11Regs, kPs11Mods, ResultSaturate, -1, 2,
     SwizzleRule::Ps11, WriteMaskRule::Ps11, 0, {0, 4, 8}, kNoFlow, -1.0f, 1.0f,
-    true, false, false, false, false, 0, false};
+    true, false, false, false, false, 0, false,
+    1.0f, true};
 constexpr VersionRules kPs12{ps(1, 2), "ps_1_2", ps12Ops, ps12Regs, kPs11Mods, ResultSaturate, -1, 2,
     SwizzleRule::Ps11, WriteMaskRule::Ps11, 0, {0, 4, 8}, kNoFlow, -1.0f, 1.0f,
-    true, false, false, false, false, 0, false};
+    true, false, false, false, false, 0, false,
+    1.0f, true};
 constexpr VersionRules kPs13{ps(1, 3), "ps_1_3", ps13Ops, ps12Regs, kPs11Mods, ResultSaturate, -1, 2,
     SwizzleRule::Ps11, WriteMaskRule::Ps11, 0, {0, 4, 8}, kNoFlow, -1.0f, 1.0f,
-    true, false, false, false, false, 0, false};
+    true, false, false, false, false, 0, false,
+    1.0f, true};
 constexpr VersionRules kPs14{ps(1, 4), "ps_1_4", ps14Ops, ps14Regs, kPs14Mods, ResultSaturate, -3, 3,
     SwizzleRule::Ps14, WriteMaskRule::Any, 0, {0, 6, 8, true}, kNoFlow, -1.0f, 1.0f,
-    true, true, false, false, false, 0, false};
+    true, true, false, false, false, 0, false,
+    8.0f, true};
 constexpr VersionRules kPs20{ps(2, 0), "ps_2_0", ps20Ops, ps20Regs, kPs20Mods, kPsResult, 0, 0,
     SwizzleRule::Ps20, WriteMaskRule::Any, 0, {96, 32, 64}, kNoFlow, kNoMin, kNoMax,
-    false, false, false, true, true, 4, false};
+    false, false, false, true, true, 4, false,
+    0.0f, true};
 constexpr VersionRules kPs2x{ps(2, 1), "ps_2_x", ps2xOps, ps2xRegs, kPs20Mods, kPsResult, 0, 0,
     SwizzleRule::Ps20, WriteMaskRule::Any, 0, {96, 32, 0, false, true}, kFlow2x, kNoMin, kNoMax,
-    false, false, true, true, true, 4, false};
+    false, false, true, true, true, 4, false,
+    0.0f, true};
 constexpr VersionRules kPs30{ps(3, 0), "ps_3_0", ps30Ops, ps30Regs, kPs30Mods, kPsResult, 0, 0,
     SwizzleRule::Arbitrary, WriteMaskRule::Any, IndexLoop, {512}, kFlow30, kNoMin, kNoMax,
-    false, false, true, true, true, 0, true};
+    false, false, true, true, true, 0, true,
+    0.0f, false};
 // clang-format on
 
 constexpr const VersionRules* kAll[] = {&kVs11, &kVs20, &kVs2x, &kVs30, &kPs11, &kPs12,
                                         &kPs13, &kPs14, &kPs20, &kPs2x, &kPs30};
 
+// ---- register names ----------------------------------------------------------------
+
+enum NamedIn : uint8_t { InVertex = 1, InPixel = 2, InBoth = 3 };
+
+constexpr RegisterNaming kRegisterNames[] = {
+    {R::Temp, InBoth, 0, "r", {}, 0},
+    {R::Input, InBoth, 0, "v", {}, 0},
+    {R::Const, InBoth, 0, "c", {}, 0},
+    {R::Const2, InBoth, 0, "c", {}, 2048},
+    {R::Const3, InBoth, 0, "c", {}, 4096},
+    {R::Const4, InBoth, 0, "c", {}, 6144},
+    {R::Addr, InVertex, 0, "a", {}, 0},
+    {R::Texture, InPixel, 0, "t", {}, 0},
+    {R::RastOut, InBoth, 0, "oRast", {"oPos", "oFog", "oPts"}, 0},
+    {R::AttrOut, InBoth, 0, "oD", {}, 0},
+    {R::Output, InVertex, 3, "o", {}, 0},
+    {R::TexCrdOut, InBoth, 0, "oT", {}, 0},
+    {R::ConstInt, InBoth, 0, "i", {}, 0},
+    {R::ColorOut, InBoth, 0, "oC", {}, 0},
+    {R::DepthOut, InBoth, 0, "", {"oDepth"}, 0},
+    {R::Sampler, InBoth, 0, "s", {}, 0},
+    {R::ConstBool, InBoth, 0, "b", {}, 0},
+    {R::Loop, InBoth, 0, "", {"aL"}, 0},
+    {R::TempFloat16, InBoth, 0, "half", {}, 0},
+    {R::MiscType, InBoth, 0, "vMisc", {"vPos", "vFace"}, 0},
+    {R::Label, InBoth, 0, "l", {}, 0},
+    {R::Predicate, InBoth, 0, "p", {}, 0},
+};
+
 }  // namespace
+
+// The first row that matches the shader type and major version names the register.
+const RegisterNaming* findRegisterNaming(RegType type, Version v) {
+  const uint8_t shader = v.isVertex() ? InVertex : InPixel;
+  for (const RegisterNaming& n : kRegisterNames)
+    if (n.type == type && (n.namedIn & shader) && v.major >= n.fromMajor) return &n;
+  return nullptr;
+}
+
+std::string_view registerTypeName(RegType type, Version version) {
+  const RegisterNaming* n = findRegisterNaming(type, version);
+  if (!n) return "?";
+  return n->fixedNames[0] ? n->fixedNames[0] : n->prefix;
+}
+
+std::string registerName(RegType type, uint32_t index, Version version) {
+  const RegisterNaming* n = findRegisterNaming(type, version);
+  if (!n) return "?" + std::to_string(index);
+  if (!*n->prefix) return n->fixedNames[0];
+  if (index < n->fixedNames.size() && n->fixedNames[index]) return n->fixedNames[index];
+  return n->prefix + std::to_string(index + n->numberOffset);
+}
 
 const VersionRules* findVersionRules(Version v) {
   if (v.major == 1 && v.minor == 0) v.minor = 1;  // vs_1_0 / ps_1_0 behave as 1_1
@@ -302,6 +369,17 @@ const RegisterRule* findRegisterRule(const VersionRules& rules, RegType type) {
   for (const RegisterRule& r : rules.registers)
     if (r.type == type) return &r;
   return nullptr;
+}
+
+uint16_t registerCapacity(const VersionRules& rules, RegType type) {
+  const RegisterRule* rule = findRegisterRule(rules, type);
+  if (!rule) return 0;
+  if (rule->fromCaps == CountFromCaps::None) return rule->count;
+  uint16_t most = rule->count;
+  for (const VersionRules* other : allVersionRules())
+    if (other->version.type == rules.version.type)
+      if (const RegisterRule* r = findRegisterRule(*other, type)) most = std::max(most, r->count);
+  return most;
 }
 
 }  // namespace refx::shader

@@ -9,8 +9,8 @@ using SM = sh::SrcMod;
 
 namespace {
 
-constexpr int kVsPos = 0, kVsDiffuse = 1, kVsTex0 = 3;
-constexpr int kPsDiffuse = 0, kPsSpecular = 1, kPsTex0 = 2;
+constexpr int kVsPos = kVertexOutPosition, kVsDiffuse = kVertexOutDiffuse, kVsTex0 = kVertexOutTex0;
+constexpr int kPsDiffuse = kPixelInDiffuse, kPsSpecular = kPixelInSpecular, kPsTex0 = kPixelInTex0;
 
 TEST(LowerVertex, M4x4WithDefAndApiConstants) {
   Builder b(sh::ShaderType::Vertex, 1, 1);
@@ -114,6 +114,28 @@ TEST(LowerPixel, ColorInputsSaturated) {
   t.input(kPsDiffuse, {0.5f, 0.25f, 0.25f, 1}).execute();
   expectNear(t.output(0), {0.5f, 0.25f, 0.25f, 1});
   EXPECT_EQ(t.lowered.program.code.size(), 1u);  // just the mov
+}
+
+TEST(LowerRegisters, FilesAreTheVersionsOwn) {
+  // registers-and-limits.md §2: ps_1_4 has t0..t5, ps_2_0 r0..r11, ps_2_x up to 32
+  // temporaries (NumTemps), ps_1_1 r0..r1; §1: vs_3_0 has o0..o11.
+  EXPECT_NO_THROW(asmRun("ps_1_4\ntexcrd r0.xyz, t5\n"));
+  EXPECT_THROW(asmRun("ps_1_4\ntexcrd r0.xyz, t6\n"), refx::Error);
+  EXPECT_NO_THROW(asmRun("ps_2_0\nmov r11, c0\nmov oC0, r11\n"));
+  EXPECT_THROW(asmRun("ps_2_0\nmov r12, c0\nmov oC0, r12\n"), refx::Error);
+  EXPECT_NO_THROW(asmRun("ps_2_x\nmov r31, c0\nmov oC0, r31\n"));
+  EXPECT_THROW(asmRun("ps_1_1\nmov r2, c0\n"), refx::Error);
+  EXPECT_THROW(asmRun("vs_3_0\ndcl_position o12\nmov o12, c0\n"), refx::Error);
+}
+
+TEST(LowerRegisters, RelativeConstantsReadTheWholeFile) {
+  // c[a0.x + n] may read any constant of the version: 256 in vertex shaders (the vs_2_0
+  // minimum, and the most a vs_1_1 device reports), 224 in ps_3_0 (§1, §2).
+  EXPECT_EQ(asmRun("vs_1_1\nmov a0.x, c0.x\nmov oPos, c[a0.x + 4]\n").lowered.floatConstantsRead, 256);
+  EXPECT_EQ(asmRun("ps_3_0\ndefi i0, 2, 0, 1, 0\nmov r0, c0\nloop aL, i0\nadd r0, r0, c[aL]\nendloop\n"
+                   "mov oC0, r0\n")
+                .lowered.floatConstantsRead,
+            224);
 }
 
 }  // namespace

@@ -80,7 +80,9 @@ TEST(LowerRobustness, RandomInstructionStreams) {
     } catch (const refx::Error&) {
     }
   }
-  EXPECT_GT(lowered, 1000);  // a fair share of the random streams is runnable
+  // A fair share of the random streams is runnable (registers beyond the version's
+  // register files, r2 in ps_1_1 say, are rejected).
+  EXPECT_GT(lowered, 900);
 }
 
 }  // namespace

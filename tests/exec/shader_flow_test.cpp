@@ -7,7 +7,7 @@ using namespace probe;
 
 namespace {
 
-constexpr int kPos = 0, kD0 = 1, kT0 = 3;
+constexpr int kPos = kVertexOutPosition, kD0 = kVertexOutDiffuse, kT0 = kVertexOutTex0;
 
 TEST(ShaderFlow, RepWithLocalAndApiCounts) {
   auto r = asmRun(R"(vs_2_0

@@ -9,7 +9,7 @@ using namespace probe;
 
 namespace {
 
-constexpr int kV0 = 0, kV1 = 1, kTC0 = 2;
+constexpr int kV0 = kPixelInDiffuse, kV1 = kPixelInSpecular, kTC0 = kPixelInTex0;
 
 Vec4 color(ShaderRun& r, int lane = 0) { return r.output(0, lane); }
 

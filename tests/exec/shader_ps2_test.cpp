@@ -6,7 +6,7 @@ using namespace probe;
 
 namespace {
 
-constexpr int kV0 = 0, kTC0 = 2, kPosition = 11;
+constexpr int kV0 = kPixelInDiffuse, kTC0 = kPixelInTex0, kPosition = kPixelInPosition;
 
 TEST(ShaderPs2, TexldVariantsPassTheirMode) {
   auto r = asmRun(R"(ps_2_0

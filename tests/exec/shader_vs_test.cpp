@@ -8,7 +8,8 @@ using namespace probe;
 
 namespace {
 
-constexpr int kPos = 0, kD0 = 1, kD1 = 2, kT0 = 3, kFog = 11, kPSize = 12;
+constexpr int kPos = kVertexOutPosition, kD0 = kVertexOutDiffuse, kD1 = kVertexOutSpecular, kT0 = kVertexOutTex0,
+              kFog = kVertexOutFog, kPSize = kVertexOutPSize;
 const float kInf = std::numeric_limits<float>::infinity();
 
 TEST(ShaderVs, BasicArithmeticWithSwizzleAndNegate) {

@@ -413,30 +413,6 @@ TEST(Bytecode, VersionDependentForms) {
   EXPECT_STREQ(findOpcode(Opcode::Tex)->name, "texld");
 }
 
-TEST(Bytecode, RegisterNames) {
-  EXPECT_EQ(registerName(RegType::RastOut, 0, vs11), "oPos");
-  EXPECT_EQ(registerName(RegType::RastOut, 1, vs11), "oFog");
-  EXPECT_EQ(registerName(RegType::RastOut, 2, vs11), "oPts");
-  EXPECT_EQ(registerName(RegType::AttrOut, 1, vs11), "oD1");
-  EXPECT_EQ(registerName(RegType::TexCrdOut, 7, vs20), "oT7");
-  EXPECT_EQ(registerName(RegType::Output, 7, vs30), "o7");
-  EXPECT_EQ(registerName(RegType::Addr, 0, vs11), "a0");
-  EXPECT_EQ(registerName(RegType::Texture, 3, ps11), "t3");
-  EXPECT_EQ(registerName(RegType::Loop, 0, vs30), "aL");
-  EXPECT_EQ(registerName(RegType::Predicate, 0, ps30), "p0");
-  EXPECT_EQ(registerName(RegType::ColorOut, 1, ps30), "oC1");
-  EXPECT_EQ(registerName(RegType::DepthOut, 0, ps20), "oDepth");
-  EXPECT_EQ(registerName(RegType::MiscType, 0, ps30), "vPos");
-  EXPECT_EQ(registerName(RegType::MiscType, 1, ps30), "vFace");
-  EXPECT_EQ(registerName(RegType::ConstInt, 2, ps30), "i2");
-  EXPECT_EQ(registerName(RegType::ConstBool, 15, ps30), "b15");
-  EXPECT_EQ(registerName(RegType::Sampler, 3, ps30), "s3");
-  EXPECT_EQ(registerName(RegType::Label, 4, vs30), "l4");
-  EXPECT_EQ(registerName(RegType::Const2, 1, vs30), "c2049");
-  EXPECT_EQ(registerTypeName(RegType::Temp, ps11), "r");
-  EXPECT_EQ(registerTypeName(RegType::Const, ps11), "c");
-}
-
 // ---------------------------------------------------------------------------------
 // decode(encode(x)) == x
 

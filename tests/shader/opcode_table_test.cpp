@@ -129,6 +129,32 @@ TEST(OpcodeTable, Properties) {
   EXPECT_FALSE(findOpcode(Opcode::Nop)->has(OpNoSlot));
 }
 
+// The opcodes with `property`, in opcode order.
+std::vector<Opcode> withProperty(OpcodeProperty property) {
+  std::vector<Opcode> out;
+  for (const OpcodeInfo& info : allOpcodes())
+    if (info.has(property) && !info.has(OpReserved)) out.push_back(info.opcode);
+  return out;
+}
+
+TEST(OpcodeTable, PropertySetsAreExact) {
+  using O = Opcode;
+  // instructions.md flow-control section: call … breakp, and label.
+  EXPECT_EQ(withProperty(OpFlowControl),
+            (std::vector<Opcode>{O::Call, O::CallNZ, O::Loop, O::Ret, O::EndLoop, O::Label, O::Rep, O::EndRep,
+                                 O::If, O::IfC, O::Else, O::EndIf, O::Break, O::BreakC, O::BreakP}));
+  // registers-and-limits.md §3: def/dcl/label/phase take no slot.
+  EXPECT_EQ(withProperty(OpNoSlot),
+            (std::vector<Opcode>{O::Label, O::Dcl, O::DefB, O::DefI, O::Def, O::Phase}));
+  // The scalar instructions whose SM2+ source takes a replicate swizzle.
+  EXPECT_EQ(withProperty(OpReplicateSwizzle),
+            (std::vector<Opcode>{O::Rcp, O::Rsq, O::Exp, O::Log, O::Pow, O::ExpP, O::LogP}));
+  // ps_1_x matrix texture instructions (texm3x3diff is reserved).
+  EXPECT_EQ(withProperty(OpTextureMatrix),
+            (std::vector<Opcode>{O::TexM3x2Pad, O::TexM3x2Tex, O::TexM3x3Pad, O::TexM3x3Tex, O::TexM3x3Spec,
+                                 O::TexM3x3VSpec, O::TexM3x2Depth, O::TexM3x3}));
+}
+
 int arithmeticSlots(Opcode op, Version v) {
   const OpcodeRule* r = opcodeRuleIn(op, v);
   return r ? r->arithmeticSlots : -1;

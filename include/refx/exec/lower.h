@@ -1,26 +1,9 @@
 // Lowering of decoded shader bytecode (refx::shader::Shader) into the exec IR, so
 // shaders run on the same interpreter as fixed-function programs.
 //
-// Register conventions of lowered programs (shared with the fixed-function builders):
-//   vertex inputs   Input  v# of the shader as written (dcl says which element feeds it)
-//   vertex outputs  Output 0 position, 1 diffuse (oD0), 2 specular (oD1), 3..10 oT0..oT7,
-//                          11 fog (.x), 12 point size (.x); vs_3_0 o# are mapped here by
-//                          their dcl semantic
-//   pixel inputs    Input  0 diffuse v0, 1 specular v1, 2..9 texcoord t0..t7, 10 fog,
-//                          11 position (vPos: screen x, y, z, w), 12 face (vFace .x: +1/-1);
-//                          ps_3_0 v# are mapped here by their dcl semantic
-//   pixel outputs   Output 0..3 oC0..oC3, 4 oDepth (.x)
-//   constants       Const  0..N-1 the float constants c# set through the API (local
-//                          `def` constants are resolved by the lowering itself);
-//                          pixel shaders additionally read the texture stages' bump
-//                          environment at kConstBumpEnv (see below), so their
-//                          constant array needs kConstBumpEnv + kConstBumpEnvCount
-//                          entries when bumpEnvStages is set
-//                   ConstInt / ConstBool: i# / b# through ExecContext::intConstants /
-//                          boolConstants (defi / defb resolved by the lowering)
-//   samplers        Instr::sampler = the stage: ps_1_x stage m (t#/r# number), ps_2_0+
-//                          s#; vertex shaders (vs_3_0 texldl) use s0..s3, which the
-//                          device binds to D3DVERTEXTEXTURESAMPLER0..3
+// Register conventions of lowered programs: exec/abi.h (shared with the fixed-function
+// builders and the rasterizer). Ranges and register counts: the version's rules
+// (shader/version_rules.h).
 //   precision       ps_1_x values written to r#/t# clamp to ±pixelShader1xMaxValue
 //                          (ps_1_4: at least 8), constants to [-1, 1], v0/v1 to [0, 1]
 //                          (saturated in place at the start of the program, ps_2_x too)
@@ -29,14 +12,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "refx/core/precision.h"
+#include "refx/exec/abi.h"
 #include "refx/exec/ir.h"
 #include "refx/shader/bytecode.h"
 
 namespace refx::exec {
 
-// exact: fp32 with the version's ranges clamped. hardware: ps_1_x values are also
-// quantised to the fixed point of the era's parts.
-enum class Precision : uint8_t { Exact, Hardware };
+using refx::Precision;
 
 struct ShaderLoweringOptions {
   Precision precision = Precision::Exact;
@@ -51,14 +34,6 @@ struct ShaderLoweringOptions {
   // saturation of the color inputs at their start.
   bool colorInputsInRange = false;
 };
-
-// Pixel shaders read BUMPENVMAT00/01/10/11 of texture stage n at
-// Const[kConstBumpEnv + 2n] = (m00, m01, m10, m11) and BUMPENVLSCALE/LOFFSET at
-// Const[kConstBumpEnv + 2n + 1] = (lscale, loffset, 0, 0).
-constexpr int kConstBumpEnv = 256;
-constexpr int kConstBumpEnvCount = 16;  // 8 stages x 2
-constexpr int kPixelInFace = 12;
-constexpr int kPixelOutDepth = 4;
 
 struct LoweredShader {
   Program program;

@@ -8,6 +8,7 @@
 
 #include "refx/core/color.h"
 #include "refx/core/diagnostics.h"
+#include "refx/core/precision.h"
 #include "refx/pipeline/caps.h"
 #include "refx/pipeline/shader_object.h"
 #include "refx/pipeline/state.h"
@@ -24,9 +25,6 @@ struct DepthStencilSurface {
 };
 using DepthStencilPtr = std::shared_ptr<DepthStencilSurface>;
 
-// Shader precision model: exact (fp32 with the versions' ranges) or hardware (ps_1_x
-// values also quantised to the fixed point of the era's parts).
-enum class Precision { Exact, Hardware };
 
 struct DeviceOptions {
   int threads = 0;  // 0: all cores

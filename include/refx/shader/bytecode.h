@@ -151,8 +151,6 @@ std::vector<uint32_t> tokensFromBytes(std::span<const uint8_t> bytes);
 // SM2+, relative-address tokens, predicate token after the destination, end token).
 std::vector<uint32_t> encode(const Shader& shader);
 
-// Names for messages and listings.
-std::string_view registerTypeName(RegType type, Version version);  // "r", "c", "oPos" …
-std::string registerName(RegType type, uint32_t index, Version version);  // "r0", "oT3", "vPos" …
+// Register names for messages and listings: version_rules.h.
 
 }  // namespace refx::shader

@@ -1,11 +1,15 @@
 // The rules of each D3D9 shader version as data: one table per version says which
 // opcodes it has and what they cost, which register files exist (count, access,
-// read ports, indexing), which modifiers, swizzles and write masks are legal, the
-// instruction-slot limits and the flow-control nesting limits. The validator checks
-// shaders against these tables; the executor reads the same register counts.
+// read ports, indexing) and the ranges their values hold, which modifiers, swizzles
+// and write masks are legal, the instruction-slot limits and the flow-control
+// nesting limits; and how assembly names each register. The validator checks
+// shaders against these tables; the lowering to the exec IR reads the same register
+// counts and ranges. What an opcode is, whatever the version: opcode_table.h.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "refx/shader/bytecode.h"
@@ -93,6 +97,11 @@ struct VersionRules {
   bool scalarReplicate;                     // scalar ops need a replicate swizzle (SM2+)
   uint8_t dependentReadLevels;              // ps_2_0: 4; 0 = no limit
   bool ps30TextureCosts;                    // texld/texkill costs of kPs30TextureCost
+  // ps_1_x: r#/t# values hold at least [-minRegisterRange, minRegisterRange] (1 for
+  // ps_1_1-1_3, 8 for ps_1_4); the device's PixelShader1xMaxValue may allow more. 0
+  // elsewhere: float registers are not clamped. Constants hold [defMin, defMax].
+  float minRegisterRange;
+  bool colorInputsSaturated;                // v0/v1 read within [0, 1] (ps_1_x-2_x)
 };
 
 // The table for a version; nullptr for versions refx does not support (ps_1_0 is
@@ -103,6 +112,29 @@ std::span<const VersionRules* const> allVersionRules();
 
 const OpcodeRule* findOpcodeRule(const VersionRules& rules, Opcode op);
 const RegisterRule* findRegisterRule(const VersionRules& rules, RegType type);
+// Registers of `type` a device running this version may have: the version's count,
+// or where the caps set it, the most any version of the same shader type has
+// (ps_2_x temps: 32). 0 when the version has no such register file.
+uint16_t registerCapacity(const VersionRules& rules, RegType type);
+
+// The one register namer, for listings and messages: "r0", "oT3", "oPos", "vFace",
+// "c2049" (CONST2 folded) … The register type alone ("r", "oT", "aL"), as written
+// before a relative address: registerTypeName.
+std::string registerName(RegType type, uint32_t index, Version version);
+std::string_view registerTypeName(RegType type, Version version);
+
+// How assembly writes the registers of one file in a version: a prefix and the
+// number, or fixed names by number (oPos, oFog, oPts). The namer above and the
+// assembler's register letters read it.
+struct RegisterNaming {
+  RegType type;
+  uint8_t namedIn;                        // bit 0: vertex shaders, bit 1: pixel shaders
+  uint8_t fromMajor;                      // the spelling applies from this major version on
+  const char* prefix;                     // before the number; "" = fixedNames[0] for every number
+  std::array<const char*, 3> fixedNames;  // numbers 0.. with a name of their own
+  uint16_t numberOffset;                  // CONST2..4 continue the c# numbers at 2048 …
+};
+const RegisterNaming* findRegisterNaming(RegType type, Version version);
 
 // ps_3_0 texture-instruction costs that depend on the sampler type and variant.
 struct Ps30TextureCost {

@@ -1,0 +1,69 @@
+// The register layout of lowered programs: where a vertex program writes its
+// outputs, where a pixel program finds its inputs and writes its colors, and where
+// pixel programs read the bump environment. Shader lowering, the fixed-function
+// program builders and the rasterizer all use these numbers.
+//
+//   vertex inputs   Input  v# of the shader as written (dcl says which element feeds it)
+//   vertex outputs  Output kVertexOut*; vs_3_0 o# are mapped here by their dcl semantic
+//   pixel inputs    Input  kPixelIn*; ps_3_0 v# are mapped here by their dcl semantic
+//   pixel outputs   Output oC0..oC3 at kPixelOutColor + n, oDepth (.x) at kPixelOutDepth
+//   constants       Const  0..N-1 the float constants c# set through the API (local
+//                          `def` constants are resolved by the lowering itself);
+//                          pixel shaders additionally read the texture stages' bump
+//                          environment at kConstBumpEnv (see below), so their
+//                          constant array needs kConstBumpEnv + kConstBumpEnvCount
+//                          entries when bumpEnvStages is set
+//                   ConstInt / ConstBool: i# / b# through ExecContext::intConstants /
+//                          boolConstants (defi / defb resolved by the lowering)
+//   samplers        Instr::sampler = the stage: ps_1_x stage m (t#/r# number), ps_2_0+
+//                          s#; vertex shaders (vs_3_0 texldl) use s0..s3, which the
+//                          device binds to D3DVERTEXTEXTURESAMPLER0..3
+#pragma once
+
+namespace refx::exec {
+
+// Vertex program outputs (vertex shaders and fixed-function T&L alike).
+enum VertexOutput : int {
+  kVertexOutPosition = 0,  // clip space (x,y,z,w); pretransformed: (sx, sy, sz, rhw) passed through
+  kVertexOutDiffuse = 1,   // oD0
+  kVertexOutSpecular = 2,  // oD1
+  kVertexOutTex0 = 3,      // ..10: oT0..oT7, coordinates for texture stage 0..7
+  kVertexOutFog = 11,      // .x (replicated)
+  kVertexOutPSize = 12,    // .x (replicated)
+  kVertexOutputCount = 13,
+};
+
+// Pixel program inputs.
+enum PixelInput : int {
+  kPixelInDiffuse = 0,   // v0
+  kPixelInSpecular = 1,  // v1
+  // 2..9 = t0..t7, coordinates for stage/texture register 0..7 (4 components; when
+  // TEXTURETRANSFORMFLAGS has PROJECTED the divisor is already in .w)
+  kPixelInTex0 = 2,
+  kPixelInFog = 10,       // .x = vertex fog factor f (1 = no fog)
+  kPixelInPosition = 11,  // vPos: (screen x, screen y, z in [0,1], eye-space w)
+  // The inputs above are interpolated for every pixel program; vFace is not
+  // interpolated and is present only in programs that read it.
+  kPixelInterpolatedInputCount = 12,
+  kPixelInFace = 12,  // vFace .x: +1 clockwise, -1 counter-clockwise
+  kPixelInputRegisters = 13,  // every pixel input a program may address
+};
+
+// Pixel program outputs.
+enum PixelOutput : int {
+  kPixelOutColor = 0,  // ..3: oC0..oC3 (fixed function and ps_1_x write oC0 alone)
+  kPixelOutDepth = 4,  // oDepth .x
+  kPixelOutputRegisters = 5,
+};
+
+constexpr int kTextureCoordinateSets = 8;  // t0..t7, oT0..oT7, TEXCOORD0..7
+constexpr int kSamplerCount = 16;          // s0..s15
+
+// Pixel shaders read BUMPENVMAT00/01/10/11 of texture stage n at
+// Const[kConstBumpEnv + 2n] = (m00, m01, m10, m11) and BUMPENVLSCALE/LOFFSET at
+// Const[kConstBumpEnv + 2n + 1] = (lscale, loffset, 0, 0).
+constexpr int kConstBumpEnv = 256;
+constexpr int kBumpEnvStages = 8;
+constexpr int kConstBumpEnvCount = 2 * kBumpEnvStages;
+
+}  // namespace refx::exec
