@@ -26,27 +26,8 @@ std::string opName(const Instruction& in, Version v) {
   return std::string(name);
 }
 
-std::string regName(RegType t, unsigned index, Version v) {
-  switch (t) {
-    case R::Temp: return fmt::format("r{}", index);
-    case R::Input: return fmt::format("v{}", index);
-    case R::Const: return fmt::format("c{}", index);
-    case R::Addr: return v.isPixel() ? fmt::format("t{}", index) : fmt::format("a{}", index);
-    case R::RastOut: return index == 0 ? "oPos" : index == 1 ? "oFog" : index == 2 ? "oPts" : fmt::format("oRast{}", index);
-    case R::AttrOut: return fmt::format("oD{}", index);
-    case R::TexCrdOut: return v.major >= 3 ? fmt::format("o{}", index) : fmt::format("oT{}", index);
-    case R::ConstInt: return fmt::format("i{}", index);
-    case R::ColorOut: return fmt::format("oC{}", index);
-    case R::DepthOut: return "oDepth";
-    case R::Sampler: return fmt::format("s{}", index);
-    case R::ConstBool: return fmt::format("b{}", index);
-    case R::Loop: return "aL";
-    case R::MiscType: return index == 0 ? "vPos" : index == 1 ? "vFace" : fmt::format("misc{}", index);
-    case R::Label: return fmt::format("l{}", index);
-    case R::Predicate: return fmt::format("p{}", index);
-    default: return fmt::format("register type {} #{}", unsigned(t), index);
-  }
-}
+// The register namer of the version rules (one spelling per register file).
+std::string regName(RegType t, unsigned index, Version v) { return registerName(t, index, v); }
 
 const char* blockName(Opcode op) {
   return op == O::Rep ? "rep" : op == O::Loop ? "loop" : op == O::IfC ? "if_comp" : "if";
