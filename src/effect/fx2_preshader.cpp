@@ -13,9 +13,9 @@ namespace refx::effect::detail {
 
 namespace {
 
-using hlsl::IrInst;
-using hlsl::IrOp;
-using hlsl::IrSrc;
+using hlsl::detail::IrInst;
+using hlsl::detail::IrOp;
+using hlsl::detail::IrSrc;
 
 struct Translator {
   FxlcProgram prog;
@@ -82,7 +82,7 @@ FxlcProgram fxlcFromPreshader(const hlsl::Preshader& pre) {
         break;
       case IrOp::Combine:
         for (size_t c = 0; c < in.parts.size() && c < 4; ++c) {
-          const hlsl::IrPart& part = in.parts[c];
+          const hlsl::detail::IrPart& part = in.parts[c];
           r[c] = part.reg >= 0 ? reg.at(size_t(part.reg))[part.component & 3] : t.literal(double(part.literal));
         }
         break;

@@ -7,7 +7,7 @@
 
 #include "refx/core/diagnostics.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 enum class BaseType : uint8_t { Void, Bool, Int, Uint, Half, Float, Double, Sampler, Texture, String, Struct };
 enum class TypeClass : uint8_t { Void, Scalar, Vector, Matrix, Object, Struct };
@@ -146,4 +146,4 @@ struct Program {
   std::vector<std::unique_ptr<FunctionDecl>> functions;
 };
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -18,7 +18,7 @@
 #include "hlsl/ir.h"
 #include "refx/shader/version_rules.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 namespace {
 
@@ -3106,4 +3106,4 @@ IrProgram buildIr(const Program& program, const BuildOptions& options, Diagnosti
   return b.run();
 }
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -24,7 +24,7 @@
 #include "refx/shader/validator.h"
 #include "refx/shader/version_rules.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 namespace {
 
@@ -1486,7 +1486,7 @@ class CodeGen {
     }
   }
 
-  shader::Instruction constantTableComment() const { return hlsl::constantTableComment(ir_, creator_, v_); }
+  shader::Instruction constantTableComment() const { return detail::constantTableComment(ir_, creator_, v_); }
 
   struct Def {
     int reg = 0;
@@ -1532,4 +1532,4 @@ shader::Shader generateCode(IrProgram& ir, const std::string& creator, Diagnosti
   return g.run();
 }
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -30,7 +30,7 @@
 #include "refx/shader/opcode_table.h"
 #include "refx/shader/version_rules.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 namespace {
 
@@ -1577,4 +1577,4 @@ shader::Shader generateCodePs1x(IrProgram& ir, const std::string& creator, Diagn
   return g.run();
 }
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

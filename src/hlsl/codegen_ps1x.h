@@ -4,7 +4,7 @@
 
 #include "hlsl/ir.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 // IR → ps_1_x instructions for programs that fit the model: texture reads at the
 // start, then arithmetic that maps onto the ps_1_x instructions and their
@@ -13,4 +13,4 @@ namespace refx::hlsl {
 shader::Shader generateCodePs1x(IrProgram& ir, const std::string& creator, DiagnosticSink& sink,
                                 const SourceLocation& entryWhere);
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -16,6 +16,8 @@
 
 namespace refx::hlsl {
 
+using namespace detail;
+
 namespace {
 
 const char* kCreator = "refx HLSL compiler 0.1";

@@ -3,7 +3,7 @@
 #include <cstring>
 #include <map>
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 namespace {
 
@@ -177,4 +177,4 @@ shader::Instruction constantTableComment(const IrProgram& ir, const std::string&
   return in;
 }
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

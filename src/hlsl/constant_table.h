@@ -10,7 +10,7 @@
 #include "hlsl/ir.h"
 #include "refx/shader/bytecode.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 struct ConstantTable {
   enum class RegisterSet : uint16_t { Bool = 0, Int4 = 1, Float4 = 2, Sampler = 3 };
@@ -37,4 +37,4 @@ struct ConstantTable {
 // the preshader's outputs), the samplers.
 shader::Instruction constantTableComment(const IrProgram& ir, const std::string& creator, const shader::Version& v);
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -18,7 +18,7 @@
 #include "refx/core/diagnostics.h"
 #include "refx/shader/bytecode.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 enum class IrOp : uint8_t {
   Input,     // shader input register (see IrProgram::inputs)
@@ -172,4 +172,4 @@ void removeDeadCode(IrProgram& ir);
 shader::Shader generateCode(IrProgram& ir, const std::string& creator, DiagnosticSink& sink,
                             const SourceLocation& entryWhere);
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 namespace {
 
@@ -339,4 +339,4 @@ std::string quoteString(std::string_view value) {
   return s;
 }
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

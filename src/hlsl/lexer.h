@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 enum class PPKind : uint8_t {
   Identifier,
@@ -96,4 +96,4 @@ std::string resolveEscapes(std::string_view spelling);
 // `value` written as a string literal (quotes added, '"' and '\' escaped).
 std::string quoteString(std::string_view value);
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -19,7 +19,7 @@
 #include <map>
 #include <set>
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 namespace {
 
@@ -989,4 +989,4 @@ ExprPtr parseExpression(const std::vector<Token>& tokens, DiagnosticSink& sink) 
   return p.singleExpression();
 }
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

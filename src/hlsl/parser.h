@@ -6,7 +6,7 @@
 #include "hlsl/ast.h"
 #include "hlsl/token.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 struct ParseOptions {
   bool compatibility = false;   // pre-release dialect (vec3, volumetexture, fx.2.0 header)
@@ -18,4 +18,4 @@ Program parse(const std::vector<Token>& tokens, const ParseOptions& options, Dia
 // Parses one expression (used for entry-point arguments given as text).
 ExprPtr parseExpression(const std::vector<Token>& tokens, DiagnosticSink& sink);
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -9,7 +9,7 @@
 
 #include "hlsl/ir.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 namespace {
 
@@ -376,4 +376,4 @@ void removeDeadCode(IrProgram& ir) {
     if (in.op == IrOp::Uniform || in.op == IrOp::UniformRel) ir.uniforms[in.index & 0xFFFF].used = true;
 }
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -16,7 +16,7 @@
 
 #include "hlsl/lexer.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 namespace {
 
@@ -1165,4 +1165,4 @@ std::vector<Token> preprocess(std::string_view source, std::string_view fileName
   return Preprocessor(options, sink).run(source, fileName);
 }
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -8,7 +8,7 @@
 #include "refx/core/diagnostics.h"
 #include "refx/hlsl/compiler.h"
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 struct PreprocessOptions {
   std::vector<MacroDefinition> defines;   // predefined by the caller (/D and the profile macros)
@@ -21,4 +21,4 @@ struct PreprocessOptions {
 std::vector<Token> preprocess(std::string_view source, std::string_view fileName, const PreprocessOptions& options,
                               DiagnosticSink& sink);
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -7,6 +7,8 @@
 
 namespace refx::hlsl {
 
+using namespace detail;
+
 namespace {
 
 // Operations the preshader evaluator runs; anything else (inputs, texture reads,
@@ -33,7 +35,7 @@ void forEachSourceReg(const IrInst& in, F&& f) {
 
 }  // namespace
 
-PreshaderExtraction extractPreshader(IrProgram& ir) {
+PreshaderExtraction detail::extractPreshader(IrProgram& ir) {
   PreshaderExtraction result;
   const size_t regs = ir.regWidth.size();
   std::vector<int> def(regs, -1);

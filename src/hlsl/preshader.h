@@ -12,10 +12,12 @@ namespace refx::hlsl {
 // What the preshader computes: IR instructions over its own registers. Uniform
 // instructions read input register `index` (the inputs table's layout).
 struct Preshader::Program {
-  std::vector<IrInst> code;
+  std::vector<detail::IrInst> code;
   std::vector<int> regWidth;
   std::vector<int> outputRegs;  // IR register of each output, in output order
 };
+
+namespace detail {
 
 // Moves the uniform-only computations of `ir` into a preshader. The shader keeps a
 // placeholder uniform (IrUniform::preshaderOutput) per value it still reads. Returns
@@ -27,5 +29,7 @@ struct PreshaderExtraction {
   std::vector<int> inputUniforms;  // ir.uniforms read, in input-register order
 };
 PreshaderExtraction extractPreshader(IrProgram& ir);
+
+}  // namespace detail
 
 }  // namespace refx::hlsl

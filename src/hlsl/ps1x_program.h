@@ -12,7 +12,7 @@
 #include "refx/shader/bytecode.h"
 #include "refx/shader/version_rules.h"
 
-namespace refx::hlsl::ps1x {
+namespace refx::hlsl::detail::ps1x {
 
 constexpr uint8_t kNone = 255;       // component not needed
 constexpr uint8_t kIdentity = 0xE4;  // .xyzw
@@ -100,4 +100,4 @@ void removeNoOpMoves(Program& program);
 // Pairs an .rgb and an .a instruction into one slot where that changes nothing.
 void pairCoissue(Program& program);
 
-}  // namespace refx::hlsl::ps1x
+}  // namespace refx::hlsl::detail::ps1x

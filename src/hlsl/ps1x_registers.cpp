@@ -8,7 +8,7 @@
 
 #include "hlsl/ps1x_program.h"
 
-namespace refx::hlsl::ps1x {
+namespace refx::hlsl::detail::ps1x {
 
 using shader::Opcode;
 using shader::RegType;
@@ -295,4 +295,4 @@ void pairCoissue(Program& p) {
   }
 }
 
-}  // namespace refx::hlsl::ps1x
+}  // namespace refx::hlsl::detail::ps1x

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace refx::hlsl {
+namespace refx::hlsl::detail {
 
 enum class TokenKind : uint8_t {
   Identifier,     // names and keywords alike: the parser decides
@@ -24,4 +24,4 @@ struct Token {
   int line = 0, column = 0;  // 1-based
 };
 
-}  // namespace refx::hlsl
+}  // namespace refx::hlsl::detail

@@ -10,6 +10,7 @@
 
 using namespace refx;
 using namespace refx::hlsl;
+using namespace refx::hlsl::detail;
 
 namespace {
 
