@@ -28,12 +28,7 @@ void drawQuad(Device& dev) {
   dev.drawPrimitiveUP(PT_TRIANGLESTRIP, 2, quad, sizeof(V));
 }
 
-TexturePtr texel(uint32_t argb) {
-  auto t = Texture::create2D(Format::A8R8G8B8, 1, 1, 1);
-  std::memcpy(t->data(0, 0), &argb, 4);
-  t->markDirty();
-  return t;
-}
+using test::texel;
 
 uint32_t renderPass(Effect& fx, Device& dev, int pass = 0) {
   dev.clear(CLEAR_TARGET | CLEAR_ZBUFFER, 0xff000000, 1, 0);

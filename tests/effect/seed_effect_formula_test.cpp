@@ -33,12 +33,7 @@ namespace {
 
 const std::string kEffects = std::string(REFX_DATA_DIR) + "/effects/";
 
-TexturePtr texel(uint32_t argb) {
-  auto t = Texture::create2D(Format::A8R8G8B8, 1, 1, 1);
-  std::memcpy(t->data(0, 0), &argb, 4);
-  t->markDirty();
-  return t;
-}
+using test::texel;
 
 // A 1x1 cube map, one color per face (+X, -X, +Y, -Y, +Z, -Z).
 TexturePtr cubeFaces(const uint32_t (&argb)[6]) {

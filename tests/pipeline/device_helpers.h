@@ -20,6 +20,14 @@ struct ColorVertex {  // D3DFVF_XYZ | D3DFVF_DIFFUSE
 };
 constexpr uint32_t kColorVertexFVF = d3d::FVF_XYZ | d3d::FVF_DIFFUSE;
 
+// A 1x1 A8R8G8B8 texture holding one texel.
+inline TexturePtr texel(uint32_t argb) {
+  auto t = Texture::create2D(Format::A8R8G8B8, 1, 1, 1);
+  std::memcpy(t->data(0, 0), &argb, 4);
+  t->markDirty();
+  return t;
+}
+
 // A device with a W x H A8R8G8B8 target and a depth buffer, cleared to `clear`.
 inline std::unique_ptr<Device> makeDevice(int w, int h, uint32_t clear = 0xff000000, int threads = 1) {
   DeviceOptions opt;

@@ -28,12 +28,7 @@ namespace {
 
 const std::string kEffects = std::string(REFX_DATA_DIR) + "/effects/";
 
-TexturePtr texel(uint32_t argb) {
-  auto t = Texture::create2D(Format::A8R8G8B8, 1, 1, 1);
-  std::memcpy(t->data(0, 0), &argb, 4);
-  t->markDirty();
-  return t;
-}
+using test::texel;
 
 // XYZ | NORMAL | TEX2, set 0 three floats (u, v and the occlusion the hemisphere vertex
 // shader reads from v7.z), set 1 three floats (the tangent, v8).
