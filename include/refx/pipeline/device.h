@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "refx/core/color.h"
 #include "refx/core/diagnostics.h"
@@ -31,6 +33,9 @@ struct DeviceOptions {
   Precision precision = Precision::Exact;
   // Warnings (Device::diagnostics()) are also printed on stderr as they happen.
   bool warningsToStderr = true;
+  // Native code for the draw's programs (the interpreter otherwise, which stays the
+  // reference). The environment variable REFX_JIT=0 turns it off for every device.
+  bool jit = true;
 };
 
 class StateBlock {
@@ -46,6 +51,18 @@ struct DrawStats {
   uint64_t pixelsShaded = 0;  // pixels that ran the pixel stage (summed over draws)
   uint64_t primitives = 0;
   uint64_t draws = 0;
+  // Draws whose DrawPlan (programs, interpolation, output merger for the state) was
+  // found in the device's cache, and draws that had to build one.
+  uint64_t planCacheHits = 0, planCacheMisses = 0;
+  // One entry per program translated for a plan: which program, how long the
+  // translation took and what runs it ("jit-avx512", "jit-avx2", "interpreter").
+  struct ProgramBuild {
+    std::string name;
+    int instructions = 0;
+    double microseconds = 0;
+    std::string backend;
+  };
+  std::vector<ProgramBuild> programBuilds;
 };
 
 class Device {
