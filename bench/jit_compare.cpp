@@ -456,6 +456,10 @@ class Jit {
     if (!jtmb) fail("LLVM: {}", llvm::toString(jtmb.takeError()));
     jtmb->setCodeGenOptLevel(llvm::CodeGenOpt::Default);  // -O2
     cpu_ = jtmb->getCPU();
+    const std::string features = jtmb->getFeatures().getString();
+    isa_ = features.find("+avx512f") != std::string::npos ? "AVX-512"
+           : features.find("+avx2") != std::string::npos  ? "AVX2"
+                                                          : "SSE";
     auto tm = jtmb->createTargetMachine();
     if (!tm) fail("LLVM: {}", llvm::toString(tm.takeError()));
     tm_ = std::move(*tm);
@@ -469,6 +473,7 @@ class Jit {
     jit_->getMainJITDylib().addGenerator(std::move(*process));
   }
   const std::string& cpu() const { return cpu_; }
+  const char* isa() const { return isa_; }
 
   // IR built, optimised at -O2 and compiled; the function's address.
   CompiledFn compile(const Program& p, int constantCount) {
@@ -504,6 +509,7 @@ class Jit {
   std::unique_ptr<llvm::TargetMachine> tm_;
   std::unique_ptr<llvm::orc::LLJIT> jit_;
   std::string cpu_;
+  const char* isa_ = "";
   int next_ = 0;
 };
 
@@ -641,8 +647,8 @@ int main(int argc, char** argv) {
     Jit jit;
     SamplerBinding samplers[kSamplerCount];
     for (auto& s : samplers) s = {nullptr, standInSample};
-    std::printf("LLVM %s ORC LLJIT, -O2, CPU %s; tex = a call to a stand-in SamplerBinding\n", LLVM_VERSION_STRING,
-                jit.cpu().c_str());
+    std::printf("LLVM %s ORC LLJIT, -O2, CPU %s (%s); tex = a call to a stand-in SamplerBinding\n",
+                LLVM_VERSION_STRING, jit.cpu().c_str(), jit.isa());
     std::printf("%-36s %6s %13s %12s %17s %8s  %s\n", "program", "instrs", "llvm-compile", "llvm",
                 "exec::prepare path", "speedup", "check (random inputs)");
     std::printf("%-36s %6s %13s %12s %17s %8s\n", "", "", "us (med of 5)", "ns/batch", "ns/batch", "");
