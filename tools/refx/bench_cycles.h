@@ -19,7 +19,7 @@ class CycleCounter {
   // Cycles so far (a running total: measure with differences).
   double read() const;
   bool hardware() const { return fd_ >= 0; }
-  // "perf_event_open cycles:u, all threads" or "CPU time x measured 3.40 GHz".
+  // "perf_event_open cycles:u, all threads" or "process CPU time x measured clock 3.40 GHz: …".
   std::string source() const;
 
  private:
