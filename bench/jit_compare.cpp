@@ -4,7 +4,8 @@
 // LLVM IR on <16 x float> (one value per register component, a batch's 16 lanes) and
 // compiled by ORC LLJIT at -O2 for the host CPU. Per program: instructions, LLVM's
 // compile time (IR built, optimised, code generated; median of 5), the run time of one
-// 16-lane batch compiled and through exec::prepare + exec::execute, and whether the two
+// 16-lane batch compiled and through exec::prepare + exec::execute (and prepare's own
+// time, the interpreter's "compile"), and whether the two
 // give the same outputs on random inputs (every mismatch is reported).
 //
 // The translation follows the interpreter's arithmetic operation for operation (no
@@ -549,7 +550,7 @@ std::vector<Candidate> candidates() {
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
     try {
-      const auto tokens = shader::assembleTokens(readText(f.string()), f.string());
+      const auto tokens = shader::assembleTokens(readText(f.string()), f.filename().string());
       r.push_back(lowered(f.filename().string(), tokens));
     } catch (const Error& e) {
       std::string why = e.what();
@@ -649,9 +650,10 @@ int main(int argc, char** argv) {
     for (auto& s : samplers) s = {nullptr, standInSample};
     std::printf("LLVM %s ORC LLJIT, -O2, CPU %s (%s); tex = a call to a stand-in SamplerBinding\n",
                 LLVM_VERSION_STRING, jit.cpu().c_str(), jit.isa());
-    std::printf("%-36s %6s %13s %12s %17s %8s  %s\n", "program", "instrs", "llvm-compile", "llvm",
+    std::printf("%-36s %6s %13s %10s %12s %17s %8s  %s\n", "program", "instrs", "llvm-compile", "prepare", "llvm",
                 "exec::prepare path", "speedup", "check (random inputs)");
-    std::printf("%-36s %6s %13s %12s %17s %8s\n", "", "", "us (med of 5)", "ns/batch", "ns/batch", "");
+    std::printf("%-36s %6s %13s %10s %12s %17s %8s\n", "", "", "us (med of 5)", "us (med)", "ns/batch", "ns/batch",
+                "");
     int mismatches = 0;
     for (Candidate& c : candidates()) {
       if (!filter.empty() && c.name.find(filter) == std::string::npos) continue;
@@ -705,7 +707,13 @@ int main(int argc, char** argv) {
 
       randomize(a, p, rng);
       ExecContext ctx{a.constants.data(), kConstants, samplers, kSamplerCount};
-      prepare(p, ctx, a.regs);
+      std::vector<double> prepareUs;
+      for (int i = 0; i < 5; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        prepare(p, ctx, a.regs);
+        prepareUs.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+      }
+      std::sort(prepareUs.begin(), prepareUs.end());
       const double interp = nsPerCall([&] {
         a.regs.laneMask = 0xffff;
         execute(p, ctx, a.regs);
@@ -716,8 +724,8 @@ int main(int argc, char** argv) {
         fn(b.regs.temps.data(), b.regs.inputs.data(), b.regs.outputs.data(), a.constants.data(), samplers,
            &b.regs.laneMask);
       });
-      std::printf("%-36s %6zu %13.0f %12.1f %17.1f %7.1fx  %s\n", c.name.c_str(), p.code.size(), compileUs[2],
-                  compiled, interp, interp / compiled, check.c_str());
+      std::printf("%-36s %6zu %13.0f %10.1f %12.1f %17.1f %7.1fx  %s\n", c.name.c_str(), p.code.size(),
+                  compileUs[2], prepareUs[2], compiled, interp, interp / compiled, check.c_str());
       std::fflush(stdout);
     }
     return mismatches ? 1 : 0;
