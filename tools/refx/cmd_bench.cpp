@@ -294,29 +294,18 @@ void setupShaderWorkload(Device& dev, const Scene& s, const std::string& workloa
   scene::racorx::setVector(dev, 6, Vec4(0.5f, 0.5f, 0.5f, 0.5f));
 }
 
-// Sets a float4 / matrix constant of an HLSL shader by name, where its constant table
-// puts it; a matrix the compiler packed by columns (the HLSL default) goes in
-// transposed, as ID3DXConstantTable::SetMatrix does.
-void setShaderConstant(Device& dev, bool vertex, const shader::ShaderConstantTable& table, const char* name,
-                       Matrix m) {
+// Sets a vertex shader constant of an HLSL shader by name, where its constant table puts
+// it; a matrix the compiler packed by columns (the HLSL default) goes in transposed, as
+// ID3DXConstantTable::SetMatrix does.
+void setVertexConstant(Device& dev, const shader::ShaderConstantTable& table, const char* name, Matrix m) {
   const shader::ShaderConstant* c = table.find(name);
   if (!c) return;  // optimised away
   if (c->cls == shader::ConstantClass::MatrixColumns) m = transpose(m);
-  const int rows = std::min(c->registerCount, 4);
-  if (vertex)
-    dev.setVertexShaderConstantF(uint32_t(c->registerIndex), &m.m[0][0], uint32_t(rows));
-  else
-    dev.setPixelShaderConstantF(uint32_t(c->registerIndex), &m.m[0][0], uint32_t(rows));
+  dev.setVertexShaderConstantF(uint32_t(c->registerIndex), &m.m[0][0], uint32_t(std::min(c->registerCount, 4)));
 }
-void setShaderConstant(Device& dev, bool vertex, const shader::ShaderConstantTable& table, const char* name, Vec4 v) {
-  Matrix m = Matrix::identity();
-  m.m[0][0] = v.x, m.m[0][1] = v.y, m.m[0][2] = v.z, m.m[0][3] = v.w;
-  const shader::ShaderConstant* c = table.find(name);
-  if (!c) return;
-  if (vertex)
-    dev.setVertexShaderConstantF(uint32_t(c->registerIndex), &m.m[0][0], 1);
-  else
-    dev.setPixelShaderConstantF(uint32_t(c->registerIndex), &m.m[0][0], 1);
+void setVertexConstant(Device& dev, const shader::ShaderConstantTable& table, const char* name, Vec4 v) {
+  if (const shader::ShaderConstant* c = table.find(name))
+    dev.setVertexShaderConstantF(uint32_t(c->registerIndex), &v.x, 1);
 }
 
 hlsl::CompileResult compileOrFail(const std::string& source, const std::string& path, const char* profile,
@@ -349,7 +338,8 @@ void setupPhongWorkload(Device& dev, const Scene& s, const TexturePtr& color, co
   source.replace(at, fixedRange.size(), fmt::format("float LightRange = {};", s.sphere ? 0.3f : 0.35f));
   const hlsl::CompileResult vs = compileOrFail(source, path, "vs_1_1", "VS");
   const hlsl::CompileResult ps = compileOrFail(source, path, "ps_2_0", "PS");
-  const auto vsTable = shader::readConstantTable(vs.shader), psTable = shader::readConstantTable(ps.shader);
+  const auto vsTable = shader::readConstantTable(vs.shader);
+  const auto psTable = shader::readConstantTable(ps.shader);
   if (!vsTable || !psTable) fail("{}: the compiled shaders have no constant table", path);
 
   scene::bindMesh(dev, s.mesh);
@@ -393,10 +383,10 @@ void setupPhongWorkload(Device& dev, const Scene& s, const TexturePtr& color, co
     dev.setRenderState(RS_ZENABLE, ZB_TRUE);
     dev.setRenderState(RS_ZFUNC, CMP_LESS);
   }
-  setShaderConstant(dev, true, *vsTable, "matWorldViewProj", wvp);
-  setShaderConstant(dev, true, *vsTable, "matWorld", world);
-  setShaderConstant(dev, true, *vsTable, "vecLightDir", Vec4(light, 1));
-  setShaderConstant(dev, true, *vsTable, "vecEye", Vec4(eye, 1));
+  setVertexConstant(dev, *vsTable, "matWorldViewProj", wvp);
+  setVertexConstant(dev, *vsTable, "matWorld", world);
+  setVertexConstant(dev, *vsTable, "vecLightDir", Vec4(light, 1));
+  setVertexConstant(dev, *vsTable, "vecEye", Vec4(eye, 1));
 }
 
 // RacorX10 (racorx10.fx) and RacorX11 (racorx_point_light.fx, technique PS11): their
@@ -415,7 +405,8 @@ std::unique_ptr<effect::Effect> setupMultipassWorkload(Device& dev, const Scene&
   if (!v.ok) fail("{}: technique PS11: {}", path, v.reason);
   fx->setTechnique(technique);
   EffectScene textures({});
-  for (const std::string& warning : textures.prepare(*fx)) std::fprintf(stderr, "%s: %s\n", path.c_str(), warning.c_str());
+  for (const std::string& warning : textures.prepare(*fx))
+    std::fprintf(stderr, "%s: %s\n", path.c_str(), warning.c_str());
   fx->setTexture(fx->parameterByName("ColorMap"), color);
   fx->setTexture(fx->parameterByName("NormalMap"), normal);
   Matrix world = Matrix::identity(), wvp = Matrix::identity();
