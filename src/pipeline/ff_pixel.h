@@ -1,5 +1,5 @@
 // Fixed-function pixel processing (texture stage cascade, specular add, fog)
-// compiled once per draw into an exec::Program, so the per-pixel work runs on the
+// compiled once per draw plan into an exec::Program, so the per-pixel work runs on the
 // same interpreter as pixel shaders.
 #pragma once
 #include <array>

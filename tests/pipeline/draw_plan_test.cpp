@@ -18,6 +18,7 @@
 #include <functional>
 
 #include "device_helpers.h"
+#include "pipeline/draw_plan.h"
 
 using namespace refx;
 using namespace refx::test;
@@ -189,6 +190,30 @@ TEST(DrawPlanCache, MaterialOfEachDraw) {
   EXPECT_EQ(pixel(*dev, 1, 1), 0xff8000ffu);
   EXPECT_EQ(counts(*dev).misses, 1u);
   EXPECT_EQ(counts(*dev).hits, 1u);
+}
+
+}  // namespace
+
+namespace {
+
+// The cache keeps at most its capacity, dropping the plan used longest ago.
+TEST(DrawPlanCache, BoundedLeastRecentlyUsed) {
+  using refx::pipeline::DrawPlan;
+  using refx::pipeline::DrawPlanCache;
+  using refx::pipeline::DrawPlanKey;
+  auto key = [](uint32_t n) { return DrawPlanKey{{n, 7}, size_t(n % 3)}; };  // colliding hashes
+  DrawPlanCache cache(3);
+  for (uint32_t n = 0; n < 3; ++n) cache.insert(key(n), std::make_shared<DrawPlan>());
+  ASSERT_NE(cache.find(key(0)), nullptr);  // 0 is now the most recently used
+  cache.insert(key(3), std::make_shared<DrawPlan>());
+  EXPECT_EQ(cache.size(), 3u);
+  EXPECT_EQ(cache.find(key(1)), nullptr);  // the least recently used went
+  EXPECT_NE(cache.find(key(0)), nullptr);
+  EXPECT_NE(cache.find(key(2)), nullptr);
+  EXPECT_NE(cache.find(key(3)), nullptr);
+  for (uint32_t n = 10; n < 100; ++n) cache.insert(key(n), std::make_shared<DrawPlan>());
+  EXPECT_EQ(cache.size(), 3u);
+  EXPECT_NE(cache.find(key(99)), nullptr);
 }
 
 }  // namespace
