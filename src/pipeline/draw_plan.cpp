@@ -33,16 +33,45 @@ constexpr TextureStageState kValueStageStates[] = {
     TSS_BUMPENVLSCALE, TSS_BUMPENVLOFFSET, TSS_CONSTANT,
 };
 
+// States only fixed-function T&L reads (ff_vertex.cpp): not in the key of a draw with
+// a vertex shader.
+constexpr RenderState kFixedVertexRenderStates[] = {
+    RS_LIGHTING, RS_VERTEXBLEND, RS_INDEXEDVERTEXBLENDENABLE, RS_NORMALIZENORMALS,
+    RS_LOCALVIEWER, RS_COLORVERTEX, RS_DIFFUSEMATERIALSOURCE, RS_SPECULARMATERIALSOURCE,
+    RS_AMBIENTMATERIALSOURCE, RS_EMISSIVEMATERIALSOURCE, RS_FOGVERTEXMODE, RS_RANGEFOGENABLE,
+    RS_POINTSCALEENABLE,
+};
+constexpr TextureStageState kFixedVertexStageStates[] = {TSS_TEXCOORDINDEX};
+// States only the texture stage cascade reads (ff_pixel.cpp): not in the key of a draw
+// with a pixel shader.
+constexpr TextureStageState kFixedPixelStageStates[] = {
+    TSS_COLOROP, TSS_COLORARG0, TSS_COLORARG1, TSS_COLORARG2, TSS_ALPHAOP,
+    TSS_ALPHAARG0, TSS_ALPHAARG1, TSS_ALPHAARG2, TSS_RESULTARG,
+};
+
+// [vertex shader bound] -> whether render state s is in the key.
 constexpr auto kRenderStateInKey = [] {
-  std::array<bool, kRenderStateCount> in{};
-  in.fill(true);
-  for (RenderState s : kValueRenderStates) in[s] = false;
+  std::array<std::array<bool, kRenderStateCount>, 2> in{};
+  for (auto& a : in) {
+    a.fill(true);
+    for (RenderState s : kValueRenderStates) a[s] = false;
+  }
+  for (RenderState s : kFixedVertexRenderStates) in[1][s] = false;
   return in;
 }();
+// [vertex shader bound][pixel shader bound] -> whether stage state s is in the key.
 constexpr auto kStageStateInKey = [] {
-  std::array<bool, kTextureStageStateCount> in{};
-  in.fill(true);
-  for (TextureStageState s : kValueStageStates) in[s] = false;
+  std::array<std::array<std::array<bool, kTextureStageStateCount>, 2>, 2> in{};
+  for (int vs = 0; vs < 2; ++vs)
+    for (int ps = 0; ps < 2; ++ps) {
+      auto& a = in[vs][ps];
+      a.fill(true);
+      for (TextureStageState s : kValueStageStates) a[s] = false;
+      if (vs)
+        for (TextureStageState s : kFixedVertexStageStates) a[s] = false;
+      if (ps)
+        for (TextureStageState s : kFixedPixelStageStates) a[s] = false;
+    }
   return in;
 }();
 
@@ -146,20 +175,24 @@ DrawPlanKey drawPlanKey(const DeviceState& st, const DrawSurfaces& surfaces, con
   pushPointer(w, st.pixelShader.get());
   w.push_back(uint32_t(device.options().precision));
   w.push_back(floatBits(device.caps().pixelShader1xMaxValue));
+  const bool vs = st.vertexShader != nullptr, ps = st.pixelShader != nullptr;
+  const auto& renderStateInKey = kRenderStateInKey[vs];
   for (uint32_t s = 0; s < kRenderStateCount; ++s)
-    if (kRenderStateInKey[s]) w.push_back(st.renderStates[s]);
+    if (renderStateInKey[s]) w.push_back(st.renderStates[s]);
   // Pixel fog with FOGSTART = FOGEND is a step instead of a ramp.
   w.push_back(st.rsFloat(RS_FOGEND) != st.rsFloat(RS_FOGSTART));
+  const auto& stageStateInKey = kStageStateInKey[vs][ps];
   for (int t = 0; t < kMaxTextureStages; ++t)
     for (uint32_t s = 0; s < kTextureStageStateCount; ++s)
-      if (kStageStateInKey[s]) w.push_back(st.stageStates[t][s]);
+      if (stageStateInKey[s]) w.push_back(st.stageStates[t][s]);
   for (int i = 0; i < kMaxSamplers; ++i) {
     for (uint32_t s = 0; s < kSamplerStateCount; ++s) w.push_back(st.samplerStates[i][s]);
     // Bound or not, and the type (which coordinates are interpolated); not the texture.
     const Texture* t = st.textures[i].get();
     w.push_back(t ? 1 + uint32_t(t->type()) : 0);
   }
-  for (int i = 0; i < 8; ++i) w.push_back(fixedFunctionLightKey(st, i));
+  if (!vs)
+    for (int i = 0; i < 8; ++i) w.push_back(fixedFunctionLightKey(st, i));
   // Pixel fog: eye-space w with a perspective projection, z otherwise.
   w.push_back(st.projection.m[2][3] != 0.0f);
   w.push_back(uint32_t(st.declaration.elements.size()));

@@ -11,14 +11,18 @@
 // texture is bound and its type; the shaders; per light whether it is on, its type,
 // which colours are black and whether its falloff is 1; whether the projection is
 // perspective; the vertex declaration; the render targets' formats and whether a depth
-// buffer is bound. Not in it: constants, transforms, material and light values,
-// viewport, the textures themselves and the vertices.
+// buffer is bound. With a vertex shader the states only fixed-function T&L reads
+// (LIGHTING, VERTEXBLEND, material sources, TEXCOORDINDEX, the lights ...) are left out,
+// with a pixel shader the texture stages' ops and arguments. Never in it: constants,
+// transforms, material and light values, viewport, the textures themselves and the
+// vertices.
 #include <gtest/gtest.h>
 
 #include <functional>
 
 #include "device_helpers.h"
 #include "pipeline/draw_plan.h"
+#include "refx/shader/assembler.h"
 
 using namespace refx;
 using namespace refx::test;
@@ -114,6 +118,37 @@ TEST(DrawPlanCache, MissWhenATextureIsBoundOrUnbound) {
   quad(*dev, 0xffffffff);
   EXPECT_EQ(counts(*dev).misses, 2u);
   EXPECT_EQ(counts(*dev).hits, 1u);
+}
+
+// With shaders bound, the states only fixed function reads do not make a new plan.
+TEST(DrawPlanCache, FixedFunctionStatesOutOfTheKeyOfShaders) {
+  auto dev = makeDevice(4, 4);
+  dev->setRenderState(RS_CULLMODE, CULL_NONE);
+  dev->setVertexShader(dev->createVertexShader(shader::assembleTokens(
+      "vs_1_1\ndcl_position v0\ndcl_color v1\nmov oPos, v0\nmov oD0, v1\n", "vs")));
+  dev->setPixelShader(dev->createPixelShader(shader::assembleTokens("ps_1_1\nmov r0, v0\n", "ps")));
+  dev->setFVF(kColorVertexFVF);
+  const std::vector<ColorVertex> v = {
+      {-1, 1, 0.5f, 0xff336699}, {1, 1, 0.5f, 0xff336699}, {-1, -1, 0.5f, 0xff336699}, {1, -1, 0.5f, 0xff336699}};
+  auto draw = [&] { dev->drawPrimitiveUP(PT_TRIANGLESTRIP, 2, v.data(), sizeof(ColorVertex)); };
+  dev->resetStats();
+  draw();
+  dev->setRenderState(RS_LIGHTING, 0);
+  dev->setRenderState(RS_NORMALIZENORMALS, 1);
+  dev->setTextureStageState(0, TSS_TEXCOORDINDEX, 1);
+  dev->setTextureStageState(0, TSS_COLOROP, TOP_ADD);
+  dev->setTextureStageState(0, TSS_ALPHAARG1, TA_TFACTOR);
+  dev->lightEnable(0, true);
+  draw();
+  EXPECT_EQ(pixel(*dev, 1, 1), 0xff336699u);  // the pixel shader's v0, as before
+  EXPECT_EQ(counts(*dev).misses, 1u);
+  EXPECT_EQ(counts(*dev).hits, 1u);
+  // Without the vertex shader T&L is fixed function again: LIGHTING counts.
+  dev->setVertexShader(nullptr);
+  draw();
+  dev->setRenderState(RS_LIGHTING, 1);
+  draw();
+  EXPECT_EQ(counts(*dev).misses, 3u);
 }
 
 TEST(DrawPlanCache, TextureFactorOfEachDraw) {
