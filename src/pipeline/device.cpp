@@ -3,20 +3,15 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
-#include <cmath>
-#include <cstring>
-#include <optional>
 
 #include "draw_plan.h"
 #include "raster.h"
 #include "state_support.h"
 #include "refx/core/diagnostics.h"
-#include "refx/resource/sampler.h"
 #include "refx/shader/version_rules.h"
 #include "render_targets.h"
 #include "shader_lowering.h"
 #include "validate.h"
-#include "vertex_fetch.h"
 
 namespace refx {
 
