@@ -351,6 +351,11 @@ std::shared_ptr<const DrawPlan> DrawPlanCache::find(const DrawPlanKey& key) {
 
 void DrawPlanCache::insert(DrawPlanKey key, std::shared_ptr<const DrawPlan> plan) {
   if (capacity_ == 0) return;
+  if (auto it = map_.find(key); it != map_.end()) {  // a new plan for a cached key replaces it
+    it->second.plan = std::move(plan);
+    order_.splice(order_.begin(), order_, it->second.use);
+    return;
+  }
   while (map_.size() >= capacity_) {
     map_.erase(order_.back());
     order_.pop_back();

@@ -249,6 +249,12 @@ TEST(DrawPlanCache, BoundedLeastRecentlyUsed) {
   for (uint32_t n = 10; n < 100; ++n) cache.insert(key(n), std::make_shared<DrawPlan>());
   EXPECT_EQ(cache.size(), 3u);
   EXPECT_NE(cache.find(key(99)), nullptr);
+  // Inserting a cached key again replaces its plan.
+  auto replacement = std::make_shared<DrawPlan>();
+  cache.insert(key(99), replacement);
+  EXPECT_EQ(cache.size(), 3u);
+  EXPECT_EQ(cache.find(key(99)), replacement);
+  EXPECT_NE(cache.find(key(98)), nullptr);
 }
 
 }  // namespace
