@@ -199,7 +199,7 @@ struct StageRegs {
   Src current, texture, diffuse;
   Src temp;
   bool tempWritten = false;  // TEMP not yet written reads (0,0,0,0)
-  Vec4 tfactor, constant;    // D3DCOLOR -> floats /255; immediates made on first use
+  Src tfactor, constant;     // the constants holding TFACTOR and the stage's CONSTANT
 };
 
 class Builder {
@@ -288,10 +288,11 @@ class Builder {
       Src du = bumpTexture, dv = bumpTexture;
       du.swizzle = composeSwizzle(du.swizzle, kSwzXXXX);
       dv.swizzle = composeSwizzle(dv.swizzle, kSwzYYYY);
-      Vec4 row0{state_.tssFloat(b, TSS_BUMPENVMAT00), state_.tssFloat(b, TSS_BUMPENVMAT01), 0, 0};
-      Vec4 row1{state_.tssFloat(b, TSS_BUMPENVMAT10), state_.tssFloat(b, TSS_BUMPENVMAT11), 0, 0};
-      p_.emit(Op::Mad, dst(RegFile::Temp, c), du, p_.imm(row0), coords);
-      p_.emit(Op::Mad, dst(RegFile::Temp, c), dv, p_.imm(row1), reg(RegFile::Temp, c));
+      // Const[kConstBumpEnvRows + 2b] = (BUMPENVMAT00, 01, 0, 0), + 1: (10, 11, 0, 0).
+      const Src row0 = reg(RegFile::Const, kConstBumpEnvRows + 2 * b);
+      const Src row1 = reg(RegFile::Const, kConstBumpEnvRows + 2 * b + 1);
+      p_.emit(Op::Mad, dst(RegFile::Temp, c), du, row0, coords);
+      p_.emit(Op::Mad, dst(RegFile::Temp, c), dv, row1, reg(RegFile::Temp, c));
       coords = reg(RegFile::Temp, c);
     }
     int t = p_.newTemp();
@@ -302,11 +303,11 @@ class Builder {
       const int b = s - 1;
       Src l = bumpTexture;
       l.swizzle = composeSwizzle(l.swizzle, kSwzZZZZ);
-      float scale = state_.tssFloat(b, TSS_BUMPENVLSCALE);
-      float offset = state_.tssFloat(b, TSS_BUMPENVLOFFSET);
+      // Const[kConstBumpEnv + 2b + 1] = (BUMPENVLSCALE, BUMPENVLOFFSET, 0, 0).
+      const int env = kConstBumpEnv + 2 * b + 1;
       int lf = p_.newTemp();
-      p_.emit(Op::Mad, dst(RegFile::Temp, lf), l, p_.imm({scale, scale, scale, scale}),
-              p_.imm({offset, offset, offset, offset}))
+      p_.emit(Op::Mad, dst(RegFile::Temp, lf), l, reg(RegFile::Const, env, kSwzXXXX),
+              reg(RegFile::Const, env, kSwzYYYY))
           .saturate = true;
       p_.emit(Op::Mul, dst(RegFile::Temp, t), reg(RegFile::Temp, t), reg(RegFile::Temp, lf));
     }
@@ -319,10 +320,10 @@ class Builder {
       case TA_DIFFUSE: s = r.diffuse; break;
       case TA_CURRENT: s = r.current; break;
       case TA_TEXTURE: s = r.texture; break;
-      case TA_TFACTOR: s = p_.imm(r.tfactor); break;
+      case TA_TFACTOR: s = r.tfactor; break;
       case TA_SPECULAR: s = reg(RegFile::Input, kPixelInSpecular); break;
       case TA_TEMP: s = r.tempWritten ? r.temp : p_.imm({0, 0, 0, 0}); break;
-      case TA_CONSTANT: s = p_.imm(r.constant); break;
+      case TA_CONSTANT: s = r.constant; break;
       default: s = p_.imm({0, 0, 0, 0}); break;  // not a D3DTA selector
     }
     if (arg & TA_ALPHAREPLICATE) s = replicateAlpha(s);  // (x.a, x.a, x.a, x.a)
@@ -345,7 +346,7 @@ class Builder {
       case O::DiffuseAlpha: return replicateAlpha(r.diffuse);
       case O::TextureAlpha: return replicateAlpha(r.texture);
       case O::TextureAlphaComp: return complement(replicateAlpha(r.texture));
-      case O::FactorAlpha: return replicateAlpha(p_.imm(r.tfactor));
+      case O::FactorAlpha: return replicateAlpha(r.tfactor);
       case O::CurrentAlpha: return replicateAlpha(r.current);
     }
     return {};
@@ -367,7 +368,6 @@ class Builder {
   }
 
   void emitStages() {
-    const Vec4 tfactor = toVec4(colorFromD3D(state_.rs(RS_TEXTUREFACTOR)));
     Src current = reg(RegFile::Input, kPixelInDiffuse);  // CURRENT in stage 0 = DIFFUSE
     Src temp{};
     bool tempWritten = false;  // TEMP starts at (0,0,0,0)
@@ -378,8 +378,8 @@ class Builder {
       const StageState& st = stages_[s];
       StageRegs r;
       r.diffuse = reg(RegFile::Input, kPixelInDiffuse);
-      r.tfactor = tfactor;
-      r.constant = toVec4(colorFromD3D(state_.tss(s, TSS_CONSTANT)));
+      r.tfactor = reg(RegFile::Const, kConstTextureFactor);
+      r.constant = reg(RegFile::Const, kConstStageConstant + s);
       r.temp = temp;
       r.tempWritten = tempWritten;
       r.texture = current;  // no texture bound (see passThroughWithoutTexture)
@@ -484,28 +484,23 @@ void appendSpecularAndFog(Program& p, const DeviceState& state, bool fixedFuncti
     // perspective (W-fog: start/end in camera units).
     const bool wFog = state.projection.m[2][3] != 0.0f;
     const Src d = reg(RegFile::Input, kPixelInPosition, wFog ? kSwzWWWW : kSwzZZZZ);
-    const float start = state.rsFloat(RS_FOGSTART), end = state.rsFloat(RS_FOGEND);
-    const float density = state.rsFloat(RS_FOGDENSITY);
-    const float log2e = 1.4426950408889634f;
+    // The values: fixedFunctionPixelConstants.
+    auto fogValue = [](int i) { return reg(RegFile::Const, kConstPixelFog + i); };
     if (table == FOG_LINEAR) {
-      if (end != start) {
+      if (state.rsFloat(RS_FOGEND) != state.rsFloat(RS_FOGSTART)) {
         // f = (end - d)/(end - start) = d * (-1/(end - start)) + end/(end - start)
-        const float k = 1.0f / (end - start);
-        p.emit(Op::Mad, fx, d, p.imm({-k, -k, -k, -k}), p.imm({end * k, end * k, end * k, end * k}))
-            .saturate = true;
+        p.emit(Op::Mad, fx, d, fogValue(0), fogValue(1)).saturate = true;
       } else {
         // end == start: the ramp degenerates to a step, f = d < end ? 1 : 0.
-        p.emit(Op::Slt, fx, d, p.imm({end, end, end, end}));
+        p.emit(Op::Slt, fx, d, fogValue(2));
       }
     } else if (table == FOG_EXP) {
       // f = 1/e^(d*density) = 2^(-d*density*log2(e))
-      const float k = -density * log2e;
-      p.emit(Op::Mul, fx, d, p.imm({k, k, k, k}));
+      p.emit(Op::Mul, fx, d, fogValue(3));
       p.emit(Op::Exp2, fx, fxxxx).saturate = true;
     } else {
       // f = 1/e^((d*density)^2) = 2^(-(d*density*sqrt(log2(e)))^2)
-      const float k = density * std::sqrt(log2e);
-      p.emit(Op::Mul, fx, d, p.imm({k, k, k, k}));
+      p.emit(Op::Mul, fx, d, fogValue(4));
       Src neg = fxxxx;
       neg.mod = SrcMod::Neg;
       p.emit(Op::Mul, fx, fxxxx, neg);
@@ -516,8 +511,33 @@ void appendSpecularAndFog(Program& p, const DeviceState& state, bool fixedFuncti
     p.emit(Op::Mov, fx, reg(RegFile::Input, kPixelInFog, kSwzXXXX)).saturate = true;
   }
   // rgb = f*C + (1 - f)*FOGCOLOR; alpha unchanged.
-  const Vec4 fogColor = toVec4(colorFromD3D(state.rs(RS_FOGCOLOR)));
-  p.emit(Op::Lrp, rgb, fxxxx, color, p.imm(fogColor));
+  p.emit(Op::Lrp, rgb, fxxxx, color, reg(RegFile::Const, kConstPixelFog + 5));
+}
+
+void fixedFunctionPixelConstants(const DeviceState& state, std::vector<Vec4>& c) {
+  c.resize(std::max(c.size(), size_t(kConstFixedPixelEnd)));
+  for (int n = 0; n < kBumpEnvStages && n < kStages; ++n) {
+    c[kConstBumpEnv + 2 * n] = Vec4(state.tssFloat(n, TSS_BUMPENVMAT00), state.tssFloat(n, TSS_BUMPENVMAT01),
+                                    state.tssFloat(n, TSS_BUMPENVMAT10), state.tssFloat(n, TSS_BUMPENVMAT11));
+    c[kConstBumpEnv + 2 * n + 1] =
+        Vec4(state.tssFloat(n, TSS_BUMPENVLSCALE), state.tssFloat(n, TSS_BUMPENVLOFFSET), 0, 0);
+    c[kConstBumpEnvRows + 2 * n] = Vec4(state.tssFloat(n, TSS_BUMPENVMAT00), state.tssFloat(n, TSS_BUMPENVMAT01), 0, 0);
+    c[kConstBumpEnvRows + 2 * n + 1] =
+        Vec4(state.tssFloat(n, TSS_BUMPENVMAT10), state.tssFloat(n, TSS_BUMPENVMAT11), 0, 0);
+    c[kConstStageConstant + n] = toVec4(colorFromD3D(state.tss(n, TSS_CONSTANT)));
+  }
+  c[kConstTextureFactor] = toVec4(colorFromD3D(state.rs(RS_TEXTUREFACTOR)));
+  const float start = state.rsFloat(RS_FOGSTART), end = state.rsFloat(RS_FOGEND);
+  const float density = state.rsFloat(RS_FOGDENSITY);
+  const float log2e = 1.4426950408889634f;
+  auto splat = [](float v) { return Vec4(v, v, v, v); };
+  const float k = 1.0f / (end - start);  // unused (infinite) when end == start
+  c[kConstPixelFog] = splat(-k);
+  c[kConstPixelFog + 1] = splat(end * k);
+  c[kConstPixelFog + 2] = splat(end);
+  c[kConstPixelFog + 3] = splat(-density * log2e);
+  c[kConstPixelFog + 4] = splat(density * std::sqrt(log2e));
+  c[kConstPixelFog + 5] = toVec4(colorFromD3D(state.rs(RS_FOGCOLOR)));
 }
 
 }  // namespace refx::pipeline

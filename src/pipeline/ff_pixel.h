@@ -1,8 +1,9 @@
 // Fixed-function pixel processing (texture stage cascade, specular add, fog)
-// compiled once per draw into an exec::Program, so the per-pixel work runs on the
+// compiled once per draw plan into an exec::Program, so the per-pixel work runs on the
 // same interpreter as pixel shaders.
 #pragma once
 #include <array>
+#include <vector>
 
 #include "refx/exec/abi.h"
 #include "refx/exec/ir.h"
@@ -39,6 +40,13 @@ exec::Program buildFixedFunctionPixelProgram(const DeviceState& state,
 // Fog and specular stages appended after any pixel program writing kPixelOutColor.
 // Reads and rewrites output kPixelOutColor in place. The specular add is applied
 // only when fixedFunctionStages is true (pixel shaders add specular themselves).
+// The fog's structure depends on FOGTABLEMODE, FOGVERTEXMODE, whether FOGSTART and
+// FOGEND are equal and whether the projection is perspective; its values are constants.
 void appendSpecularAndFog(exec::Program& p, const DeviceState& state, bool fixedFunctionStages);
+
+// The constants fixed-function pixel programs and the appended fog read (exec/abi.h:
+// bump environment, TFACTOR, stage CONSTANTs, fog), written into `constants` (grown to
+// exec::kConstFixedPixelEnd if smaller; entries below kConstBumpEnv are left as they are).
+void fixedFunctionPixelConstants(const DeviceState& state, std::vector<Vec4>& constants);
 
 }  // namespace refx::pipeline

@@ -1,7 +1,9 @@
-// Fixed-function T&L as straight-line IR. State that is uniform for the draw
-// (matrices, lights moved into camera space, material colors, fog parameters) is
-// folded into Imm constants at build time; per-lane decisions (range, spot cone,
-// N·L > 0) become Slt/Sge masks multiplied into the terms.
+// Fixed-function T&L as straight-line IR. Values that are uniform for the draw
+// (matrices, lights moved into camera space, material colors, fog parameters) are
+// read from constants (exec/abi.h kConstVertex*) that fixedFunctionVertexConstants
+// computes for every draw, so the program depends on the state's structure alone;
+// per-lane decisions (range, spot cone, N·L > 0) become Slt/Sge masks multiplied
+// into the terms.
 #include "pipeline/ff_vertex.h"
 
 #include <algorithm>
@@ -56,14 +58,29 @@ enum class Blend {
   Tween,    // lerp(POSITION0, POSITION1, TWEENFACTOR) (normals too), then World(0) * View
 };
 
-// Indexed vertex blending reads World(index)*View from a table of immediates at a
+// Indexed vertex blending reads World(index)*View from the constant table at a
 // per-lane offset: 4 position columns, then 3 normal-matrix columns, per matrix.
-constexpr int kTableStride = 7;
+constexpr int kTableStride = kConstVertexBlendStride;
+
+// Fields of a light's constants (kConstVertexLights) and of the material's.
+enum LightField : int {
+  kLightDirection, kLightPosition, kLightAttenuation0, kLightAttenuation1, kLightAttenuation2,
+  kLightRange, kLightCosPhi, kLightSpotScale, kLightSpotOffset, kLightFalloff, kLightAmbient,
+  kLightDiffuse, kLightSpecular, kLightHalfway,
+};
+static_assert(kLightHalfway + 1 == kConstVertexLightStride);
+enum MaterialField : int { kMaterialDiffuse, kMaterialAmbient, kMaterialSpecular, kMaterialEmissive, kMaterialPower };
+
+// An enabled light of a type D3D9 knows (others are ignored).
+bool lightActive(const DeviceState& s, int i) {
+  const Light& l = s.lights[size_t(i)];
+  return s.lightEnabled[size_t(i)] &&
+         (l.type == LIGHT_POINT || l.type == LIGHT_SPOT || l.type == LIGHT_DIRECTIONAL);
+}
 
 class Builder {
  public:
   Builder(const DeviceState& s, const FixedFunctionVertexConfig& c) : st_(s), cfg_(c) {
-    worldView_ = s.world * s.view;
     const uint32_t mode = s.rs(RS_VERTEXBLEND);
     const bool indexed = s.rs(RS_INDEXEDVERTEXBLENDENABLE) && c.blendIndicesType >= 0;
     if (c.pretransformed) {
@@ -94,6 +111,12 @@ class Builder {
   static Dst out(int r, uint8_t mask = kMaskAll) { return dst(RegFile::Output, r, mask); }
   Src k(Vec4 v) { return p_.imm(v); }
   Src k(float v) { return p_.imm(splat(v)); }
+  // A value of the draw's constant array (exec/abi.h).
+  static Src c(int slot) { return reg(RegFile::Const, slot); }
+  static Src column(int firstSlot, int j) { return c(firstSlot + j); }
+  static Src lightValue(int light, int field) {
+    return c(kConstVertexLights + kConstVertexLightStride * light + field);
+  }
   Instr& emit(Op op, Dst d, Src a = {}, Src b = {}, Src c = {}) { return p_.emit(op, d, a, b, c); }
 
   // New temp holding normalize(s.xyz) (w undefined); zero stays zero.
@@ -118,7 +141,7 @@ class Builder {
   int blendWeights();    // weight of matrix i in component i (the last: 1 - the others)
   int blendOffsets();    // indexed: table offset of matrix i in component i
   // Column `col` of blended matrix `matrix` (its normal matrix with `normal`).
-  Src blendColumn(int matrix, int col, bool normal, const Matrix& nonIndexed);
+  Src blendColumn(int matrix, int col, bool normal);
   int blendedCameraPosition();
   int blendedCameraNormal();
   Src viewerDirection();  // V: vertex -> viewer
@@ -126,11 +149,11 @@ class Builder {
   int sphereMapCoords();   // (u, v, 0, 0)
 
   // Material color source per D3DMCS_*, honouring COLORVERTEX and what the vertex has.
-  Src materialSource(RenderState sourceState, Color4 materialColor);
+  Src materialSource(RenderState sourceState, int materialSlot);
 
   void emitPosition();
   void emitLighting();
-  void emitLight(const Light& light, int lightScratch);
+  void emitLight(int index, int lightScratch);
   void emitUnlitColors();
   void emitFog();
   void emitPointSize();
@@ -138,7 +161,6 @@ class Builder {
 
   const DeviceState& st_;
   const FixedFunctionVertexConfig& cfg_;
-  Matrix worldView_;
   Blend blend_ = Blend::None;
   int blendMatrices_ = 0;  // Blend::Weights: matrices blended (1-4)
   bool indexed_ = false;   // Blend::Weights: matrices chosen by BLENDINDICES
@@ -156,7 +178,7 @@ Src Builder::modelPosition() {
     // POSITION0 * (1 - t) + POSITION1 * t = POSITION0 + t * (POSITION1 - POSITION0)
     modelPos_ = p_.newTemp();
     emit(Op::Sub, td(modelPos_), in(kVertexInPosition1), in(kVertexInPosition));
-    emit(Op::Mad, td(modelPos_), t(modelPos_), k(rsF(RS_TWEENFACTOR)), in(kVertexInPosition));
+    emit(Op::Mad, td(modelPos_), t(modelPos_), c(kConstVertexTweenFactor), in(kVertexInPosition));
   }
   return t(modelPos_);
 }
@@ -166,7 +188,7 @@ Src Builder::modelNormal() {
   if (modelNormal_ < 0) {
     modelNormal_ = p_.newTemp();
     emit(Op::Sub, td(modelNormal_, kMaskXYZ), in(kVertexInNormal1), in(kVertexInNormal));
-    emit(Op::Mad, td(modelNormal_, kMaskXYZ), t(modelNormal_), k(rsF(RS_TWEENFACTOR)),
+    emit(Op::Mad, td(modelNormal_, kMaskXYZ), t(modelNormal_), c(kConstVertexTweenFactor),
          in(kVertexInNormal));
   }
   return t(modelNormal_);
@@ -192,13 +214,7 @@ int Builder::blendWeights() {
 int Builder::blendOffsets() {
   if (offsets_ >= 0) return offsets_;
   // The table: World(m) * View and its normal matrix for all 256 matrices.
-  tableBase_ = int(p_.immediates.size());
-  for (int m = 0; m < kMaxWorldMatrices; ++m) {
-    const Matrix wv = st_.worldMatrix(m) * st_.view;
-    const Matrix nm = normalMatrix(wv);
-    for (int j = 0; j < 4; ++j) p_.immediates.push_back(column(wv, j));
-    for (int j = 0; j < 3; ++j) p_.immediates.push_back(column(nm, j));
-  }
+  tableBase_ = kConstVertexBlendTable;
   // D3DCOLOR indices arrive as byte/255 in D3DCOLOR's component order (x = bits 16-23);
   // UBYTE4 as the bytes. Indices outside 0-255 (float elements) are clamped.
   offsets_ = p_.newTemp();
@@ -211,9 +227,9 @@ int Builder::blendOffsets() {
   return offsets_;
 }
 
-Src Builder::blendColumn(int matrix, int col, bool normal, const Matrix& nonIndexed) {
-  if (!indexed_) return k(column(nonIndexed, col));
-  Src s = reg(RegFile::Imm, tableBase_ + (normal ? 4 : 0) + col);
+Src Builder::blendColumn(int matrix, int col, bool normal) {
+  if (!indexed_) return c(kConstVertexBlendMatrices + kConstVertexBlendStride * matrix + (normal ? 4 : 0) + col);
+  Src s = reg(RegFile::Const, tableBase_ + (normal ? 4 : 0) + col);
   s.rel = RelMode::Temp;
   s.relReg = uint16_t(blendOffsets());
   s.relComp = uint8_t(matrix);
@@ -226,16 +242,15 @@ int Builder::blendedCameraPosition() {
   const int p = p_.newTemp(), x = p_.newTemp();
   if (blend_ == Blend::Tween) {
     for (int j = 0; j < 4; ++j)
-      emit(Op::Dp4, td(p, uint8_t(1 << j)), modelPosition(), k(column(worldView_, j)));
+      emit(Op::Dp4, td(p, uint8_t(1 << j)), modelPosition(), column(kConstVertexWorldView, j));
     return p;
   }
   const int w = blendWeights();
   if (indexed_) blendOffsets();
   for (int i = 0; i < blendMatrices_; ++i) {
-    const Matrix wv = indexed_ ? Matrix{} : st_.worldMatrix(i) * st_.view;
     const int dst = i == 0 ? p : x;
     for (int j = 0; j < 4; ++j)
-      emit(Op::Dp4, td(dst, uint8_t(1 << j)), in(kVertexInPosition), blendColumn(i, j, false, wv));
+      emit(Op::Dp4, td(dst, uint8_t(1 << j)), in(kVertexInPosition), blendColumn(i, j, false));
     if (i == 0)
       emit(Op::Mul, td(p), t(p), t(w, swz(0, 0, 0, 0)));
     else
@@ -248,17 +263,15 @@ int Builder::blendedCameraPosition() {
 int Builder::blendedCameraNormal() {
   const int n = p_.newTemp(), x = p_.newTemp();
   if (blend_ == Blend::Tween) {
-    const Matrix nm = normalMatrix(worldView_);
     for (int j = 0; j < 3; ++j)
-      emit(Op::Dp3, td(n, uint8_t(1 << j)), modelNormal(), k(column(nm, j)));
+      emit(Op::Dp3, td(n, uint8_t(1 << j)), modelNormal(), column(kConstVertexNormalMatrix, j));
   } else {
     const int w = blendWeights();
     if (indexed_) blendOffsets();
     for (int i = 0; i < blendMatrices_; ++i) {
-      const Matrix nm = indexed_ ? Matrix{} : normalMatrix(st_.worldMatrix(i) * st_.view);
       const int dst = i == 0 ? n : x;
       for (int j = 0; j < 3; ++j)
-        emit(Op::Dp3, td(dst, uint8_t(1 << j)), in(kVertexInNormal), blendColumn(i, j, true, nm));
+        emit(Op::Dp3, td(dst, uint8_t(1 << j)), in(kVertexInNormal), blendColumn(i, j, true));
       if (i == 0)
         emit(Op::Mul, td(n, kMaskXYZ), t(n), t(w, swz(0, 0, 0, 0)));
       else
@@ -274,7 +287,7 @@ int Builder::cameraPosition() {
   if (pos_ < 0) {
     pos_ = p_.newTemp();
     for (int j = 0; j < 3; ++j)
-      emit(Op::Dp4, td(pos_, uint8_t(1 << j)), in(kVertexInPosition), k(column(worldView_, j)));
+      emit(Op::Dp4, td(pos_, uint8_t(1 << j)), in(kVertexInPosition), column(kConstVertexWorldView, j));
     emit(Op::Mov, td(pos_, kMaskW), k(1.0f));
   }
   return pos_;
@@ -286,9 +299,8 @@ int Builder::cameraNormal() {
   if (cfg_.hasNormal) {
     if (blend_ == Blend::None) {
       // Row vector times the inverse transpose: component j = dp3(n, column j).
-      Matrix nm = normalMatrix(worldView_);
       for (int j = 0; j < 3; ++j)
-        emit(Op::Dp3, td(n, uint8_t(1 << j)), in(kVertexInNormal), k(column(nm, j)));
+        emit(Op::Dp3, td(n, uint8_t(1 << j)), in(kVertexInNormal), column(kConstVertexNormalMatrix, j));
       emit(Op::Mov, td(n, kMaskW), k(0.0f));
     }
     if (rs(RS_NORMALIZENORMALS)) {
@@ -338,13 +350,13 @@ int Builder::sphereMapCoords() {
   return sphere_;
 }
 
-Src Builder::materialSource(RenderState sourceState, Color4 materialColor) {
+Src Builder::materialSource(RenderState sourceState, int materialSlot) {
   if (rs(RS_COLORVERTEX)) {
     uint32_t src = rs(sourceState);
     if (src == MCS_COLOR1 && cfg_.hasDiffuse) return in(kVertexInDiffuse);
     if (src == MCS_COLOR2 && cfg_.hasSpecular) return in(kVertexInSpecular);
   }
-  return k(rgb(materialColor));
+  return c(materialSlot);
 }
 
 void Builder::emitPosition() {
@@ -355,13 +367,12 @@ void Builder::emitPosition() {
   if (blend_ != Blend::None) {
     const int p = cameraPosition();
     for (int j = 0; j < 4; ++j)
-      emit(Op::Dp4, out(kVertexOutPosition, uint8_t(1 << j)), t(p), k(column(st_.projection, j)));
+      emit(Op::Dp4, out(kVertexOutPosition, uint8_t(1 << j)), t(p), column(kConstVertexProjection, j));
     return;
   }
-  Matrix wvp = worldView_ * st_.projection;
   for (int j = 0; j < 4; ++j)
     emit(Op::Dp4, out(kVertexOutPosition, uint8_t(1 << j)), in(kVertexInPosition),
-         k(column(wvp, j)));
+         column(kConstVertexWorldViewProjection, j));
 }
 
 void Builder::emitUnlitColors() {
@@ -372,8 +383,9 @@ void Builder::emitUnlitColors() {
 
 // One enabled light, accumulated into ambAcc_/diffAcc_/specAcc_. `sc` is a scratch
 // temp base (4 temps) reused by every light.
-void Builder::emitLight(const Light& light, int sc) {
-  const Matrix& view = st_.view;
+void Builder::emitLight(int index, int sc) {
+  const Light& light = st_.lights[index];
+  auto value = [&](int field) { return lightValue(index, field); };
   const bool specular = rs(RS_SPECULARENABLE) && !isBlack(light.specular);
   const int n = cameraNormal();
   const int ldir = sc, s = sc + 1, a = sc + 2, h = sc + 3;
@@ -383,41 +395,36 @@ void Builder::emitLight(const Light& light, int sc) {
   bool local = light.type != LIGHT_DIRECTIONAL;
 
   if (!local) {
-    Vec3 d = normalize(-transformNormal(light.direction, view));
-    ldirSrc = k(Vec4(d, 0));
+    ldirSrc = value(kLightDirection);
   } else {
-    Vec3 lp = transformCoord(light.position, view);
     int pos = cameraPosition();
-    emit(Op::Sub, td(ldir, kMaskXYZ), k(Vec4(lp, 0)), t(pos));
+    emit(Op::Sub, td(ldir, kMaskXYZ), value(kLightPosition), t(pos));
     emit(Op::Dp3, td(s, kMaskW), t(ldir), t(ldir));                   // d²
     emit(Op::Max, td(s, kMaskW), t(s, kSwzWWWW), k(kTiny));
     emit(Op::Rsq, td(s, kMaskX), t(s, kSwzWWWW));                     // 1/d
     emit(Op::Mul, td(ldir, kMaskXYZ), t(ldir), t(s, kSwzXXXX));      // Ldir
     emit(Op::Mul, td(s, kMaskX), t(s, kSwzWWWW), t(s, kSwzXXXX));    // d
     // atten = 1 / (a0 + a1 d + a2 d²)
-    emit(Op::Mad, td(a, kMaskX), t(s, kSwzXXXX), k(light.attenuation1), k(light.attenuation0));
-    emit(Op::Mad, td(a, kMaskX), t(s, kSwzWWWW), k(light.attenuation2), t(a, kSwzXXXX));
+    emit(Op::Mad, td(a, kMaskX), t(s, kSwzXXXX), value(kLightAttenuation1), value(kLightAttenuation0));
+    emit(Op::Mad, td(a, kMaskX), t(s, kSwzWWWW), value(kLightAttenuation2), t(a, kSwzXXXX));
     emit(Op::Max, td(a, kMaskX), t(a, kSwzXXXX), k(kTiny));
     emit(Op::Rcp, td(a, kMaskX), t(a, kSwzXXXX));
     // Beyond Range the light contributes nothing: factor *= (Range >= d).
-    emit(Op::Sge, td(a, 0x2), k(light.range), t(s, kSwzXXXX));
+    emit(Op::Sge, td(a, 0x2), value(kLightRange), t(s, kSwzXXXX));
     emit(Op::Mul, td(a, kMaskX), t(a, kSwzXXXX), t(a, kSwzYYYY));
     if (light.type == LIGHT_SPOT) {
       // spot = rho > cos(Phi/2) ? saturate((rho - cosPhi)/(cosTheta - cosPhi))^Falloff : 0
-      Vec3 sd = normalize(-transformNormal(light.direction, view));
-      float cosTheta = std::cos(light.theta * 0.5f), cosPhi = std::cos(light.phi * 0.5f);
-      float band = cosTheta - cosPhi;
-      float scale = band > 0 ? 1.0f / band : kHuge;  // no band: a hard edge at Phi
-      emit(Op::Dp3, td(a, 0x2), k(Vec4(sd, 0)), t(ldir));                       // rho
-      emit(Op::Slt, td(a, 0x4), k(cosPhi), t(a, kSwzYYYY));                      // rho > cosPhi
-      emit(Op::Mad, td(a, 0x2), t(a, kSwzYYYY), k(scale), k(-cosPhi * scale)).saturate = true;
+      emit(Op::Dp3, td(a, 0x2), value(kLightDirection), t(ldir));                // rho
+      emit(Op::Slt, td(a, 0x4), value(kLightCosPhi), t(a, kSwzYYYY));            // rho > cosPhi
+      emit(Op::Mad, td(a, 0x2), t(a, kSwzYYYY), value(kLightSpotScale), value(kLightSpotOffset))
+          .saturate = true;
       if (light.falloff != 1.0f)
-        emit(Op::Pow, td(a, 0x2), t(a, kSwzYYYY), k(light.falloff));
+        emit(Op::Pow, td(a, 0x2), t(a, kSwzYYYY), value(kLightFalloff));
       emit(Op::Mul, td(a, kMaskX), t(a, kSwzXXXX), t(a, kSwzYYYY));
       emit(Op::Mul, td(a, kMaskX), t(a, kSwzXXXX), t(a, kSwzZZZZ));
     }
     if (!isBlack(light.ambient))
-      emit(Op::Mad, td(ambAcc_, kMaskXYZ), t(a, kSwzXXXX), k(rgb(light.ambient)), t(ambAcc_));
+      emit(Op::Mad, td(ambAcc_, kMaskXYZ), t(a, kSwzXXXX), value(kLightAmbient), t(ambAcc_));
     ldirSrc = t(ldir);
   }
 
@@ -425,14 +432,13 @@ void Builder::emitLight(const Light& light, int sc) {
   emit(Op::Max, td(s, 0x2), t(s, kSwzXXXX), k(0.0f));
   if (local) emit(Op::Mul, td(s, 0x2), t(s, kSwzYYYY), t(a, kSwzXXXX));
   if (!isBlack(light.diffuse))
-    emit(Op::Mad, td(diffAcc_, kMaskXYZ), t(s, kSwzYYYY), k(rgb(light.diffuse)), t(diffAcc_));
+    emit(Op::Mad, td(diffAcc_, kMaskXYZ), t(s, kSwzYYYY), value(kLightDiffuse), t(diffAcc_));
 
   if (specular) {
     // H = normalize(V + Ldir); term = max(N·H, 0)^Power, only where N·L > 0.
     Src hSrc;
     if (!local && !rs(RS_LOCALVIEWER)) {
-      Vec3 l = normalize(-transformNormal(light.direction, view));
-      hSrc = k(Vec4(normalize(l + kNonLocalViewer), 0));
+      hSrc = value(kLightHalfway);
     } else {
       emit(Op::Add, td(h, kMaskXYZ), viewerDirection(), ldirSrc);
       emit(Op::Dp3, td(s, kMaskW), t(h), t(h));
@@ -443,38 +449,26 @@ void Builder::emitLight(const Light& light, int sc) {
     }
     emit(Op::Dp3, td(s, 0x4), t(n), hSrc);
     emit(Op::Max, td(s, 0x4), t(s, kSwzZZZZ), k(0.0f));
-    emit(Op::Pow, td(s, 0x4), t(s, kSwzZZZZ), k(st_.material.power));
+    emit(Op::Pow, td(s, 0x4), t(s, kSwzZZZZ), c(kConstVertexMaterial + kMaterialPower));
     emit(Op::Slt, td(s, kMaskW), k(0.0f), t(s, kSwzXXXX));
     emit(Op::Mul, td(s, 0x4), t(s, kSwzZZZZ), t(s, kSwzWWWW));
     if (local) emit(Op::Mul, td(s, 0x4), t(s, kSwzZZZZ), t(a, kSwzXXXX));
-    emit(Op::Mad, td(specAcc_, kMaskXYZ), t(s, kSwzZZZZ), k(rgb(light.specular)), t(specAcc_));
+    emit(Op::Mad, td(specAcc_, kMaskXYZ), t(s, kSwzZZZZ), value(kLightSpecular), t(specAcc_));
   }
 }
 
 void Builder::emitLighting() {
-  const Material& m = st_.material;
-  Src diffuseM = materialSource(RS_DIFFUSEMATERIALSOURCE, m.diffuse);
-  Src ambientM = materialSource(RS_AMBIENTMATERIALSOURCE, m.ambient);
-  Src specularM = materialSource(RS_SPECULARMATERIALSOURCE, m.specular);
-  Src emissiveM = materialSource(RS_EMISSIVEMATERIALSOURCE, m.emissive);
+  Src diffuseM = materialSource(RS_DIFFUSEMATERIALSOURCE, kConstVertexMaterial + kMaterialDiffuse);
+  Src ambientM = materialSource(RS_AMBIENTMATERIALSOURCE, kConstVertexMaterial + kMaterialAmbient);
+  Src specularM = materialSource(RS_SPECULARMATERIALSOURCE, kConstVertexMaterial + kMaterialSpecular);
+  Src emissiveM = materialSource(RS_EMISSIVEMATERIALSOURCE, kConstVertexMaterial + kMaterialEmissive);
   specularSource_ = specularM;
 
   // Global ambient plus the ambient of directional lights (atten = spot = 1) is uniform.
-  Color4 ga = colorFromD3D(rs(RS_AMBIENT));
   bool anyLight = false;
-  for (int i = 0; i < 8; ++i) {
-    if (!st_.lightEnabled[i]) continue;
-    const Light& l = st_.lights[i];
-    if (l.type != LIGHT_POINT && l.type != LIGHT_SPOT && l.type != LIGHT_DIRECTIONAL) continue;
-    anyLight = true;
-    if (l.type == LIGHT_DIRECTIONAL) {
-      ga.r += l.ambient.r;
-      ga.g += l.ambient.g;
-      ga.b += l.ambient.b;
-    }
-  }
+  for (int i = 0; i < 8; ++i) anyLight |= lightActive(st_, i);
   ambAcc_ = p_.newTemp();
-  emit(Op::Mov, td(ambAcc_), k(Vec4(ga.r, ga.g, ga.b, 0)));
+  emit(Op::Mov, td(ambAcc_), c(kConstVertexAmbient));
   diffAcc_ = p_.newTemp();
   emit(Op::Mov, td(diffAcc_), k(0.0f));
   const bool specular = rs(RS_SPECULARENABLE) != 0;
@@ -485,12 +479,8 @@ void Builder::emitLighting() {
   if (anyLight) {
     int scratch = p_.newTemp();
     for (int i = 1; i < 4; ++i) p_.newTemp();
-    for (int i = 0; i < 8; ++i) {
-      if (!st_.lightEnabled[i]) continue;
-      const Light& l = st_.lights[i];
-      if (l.type != LIGHT_POINT && l.type != LIGHT_SPOT && l.type != LIGHT_DIRECTIONAL) continue;
-      emitLight(l, scratch);
-    }
+    for (int i = 0; i < 8; ++i)
+      if (lightActive(st_, i)) emitLight(i, scratch);
   }
 
   // diffuse.rgb = Emissive + Ambient*(Ga + Σambient) + Diffuse*Σdiffuse; .a = Diffuse.a
@@ -530,19 +520,16 @@ void Builder::emitFog() {
   } else {
     d = t(pos, kSwzZZZZ, SrcMod::Abs);
   }
-  const float start = rsF(RS_FOGSTART), end = rsF(RS_FOGEND), density = rsF(RS_FOGDENSITY);
   if (mode == FOG_LINEAR) {
     // f = (end - d) / (end - start)
-    float range = end - start;
-    float scale = range != 0 ? 1.0f / range : kHuge;
-    emit(Op::Mad, td(f, kMaskX), d, k(-scale), k(end * scale)).saturate = true;
+    emit(Op::Mad, td(f, kMaskX), d, c(kConstVertexFog), c(kConstVertexFog + 1)).saturate = true;
   } else if (mode == FOG_EXP) {
     // f = e^-(d*density) = 2^(-d*density*log2 e)
-    emit(Op::Mul, td(f, kMaskX), d, k(-density * kLog2e));
+    emit(Op::Mul, td(f, kMaskX), d, c(kConstVertexFog + 2));
     emit(Op::Exp2, td(f, kMaskX), t(f, kSwzXXXX)).saturate = true;
   } else {
     // f = e^-((d*density)²)
-    emit(Op::Mul, td(f, kMaskX), d, k(density));
+    emit(Op::Mul, td(f, kMaskX), d, c(kConstVertexFog + 3));
     emit(Op::Mul, td(f, kMaskX), t(f, kSwzXXXX), t(f, kSwzXXXX));
     emit(Op::Mul, td(f, kMaskX), t(f, kSwzXXXX), k(-kLog2e));
     emit(Op::Exp2, td(f, kMaskX), t(f, kSwzXXXX)).saturate = true;
@@ -554,7 +541,7 @@ void Builder::emitFog() {
 // Point size: vertex PSIZE or D3DRS_POINTSIZE; POINTSCALEENABLE scales by
 // Vh * sqrt(1 / (A + B*De + C*De²)), De = eye distance; clamped to [MIN, MAX].
 void Builder::emitPointSize() {
-  Src size = cfg_.hasPSize ? in(kVertexInPSize, kSwzXXXX) : k(rsF(RS_POINTSIZE));
+  Src size = cfg_.hasPSize ? in(kVertexInPSize, kSwzXXXX) : c(kConstVertexPointSize);
   int r = p_.newTemp();
   emit(Op::Mov, td(r, kMaskX), size);
   if (!cfg_.pretransformed && rs(RS_POINTSCALEENABLE)) {
@@ -564,15 +551,15 @@ void Builder::emitPointSize() {
     emit(Op::Max, td(q, kMaskW), t(q, kSwzWWWW), k(kTiny));
     emit(Op::Rsq, td(q, kMaskX), t(q, kSwzWWWW));
     emit(Op::Mul, td(q, kMaskX), t(q, kSwzWWWW), t(q, kSwzXXXX));    // De
-    emit(Op::Mad, td(q, kMaskX), t(q, kSwzXXXX), k(rsF(RS_POINTSCALE_B)), k(rsF(RS_POINTSCALE_A)));
-    emit(Op::Mad, td(q, kMaskX), t(q, kSwzWWWW), k(rsF(RS_POINTSCALE_C)), t(q, kSwzXXXX));
+    emit(Op::Mad, td(q, kMaskX), t(q, kSwzXXXX), c(kConstVertexPointSize + 2), c(kConstVertexPointSize + 1));
+    emit(Op::Mad, td(q, kMaskX), t(q, kSwzWWWW), c(kConstVertexPointSize + 3), t(q, kSwzXXXX));
     emit(Op::Max, td(q, kMaskX), t(q, kSwzXXXX), k(kTiny));
     emit(Op::Rsq, td(q, kMaskX), t(q, kSwzXXXX));
     emit(Op::Mul, td(r, kMaskX), t(r, kSwzXXXX), t(q, kSwzXXXX));
-    emit(Op::Mul, td(r, kMaskX), t(r, kSwzXXXX), k(float(st_.viewport.height)));
+    emit(Op::Mul, td(r, kMaskX), t(r, kSwzXXXX), c(kConstVertexPointSize + 4));
   }
-  emit(Op::Max, td(r, kMaskX), t(r, kSwzXXXX), k(rsF(RS_POINTSIZE_MIN)));
-  emit(Op::Min, out(kVertexOutPSize), t(r, kSwzXXXX), k(rsF(RS_POINTSIZE_MAX)));
+  emit(Op::Max, td(r, kMaskX), t(r, kSwzXXXX), c(kConstVertexPointSize + 5));
+  emit(Op::Min, out(kVertexOutPSize), t(r, kSwzXXXX), c(kConstVertexPointSize + 6));
 }
 
 void Builder::emitTexCoords(int stage) {
@@ -615,14 +602,15 @@ void Builder::emitTexCoords(int stage) {
     if (dims > 0) fill[dims] = 1;
     emit(Op::Mov, td(x, maskFrom(dims)), k(fill));
   }
-  // Pretransformed vertices are not transformed; COUNTn / PROJECTED still apply.
-  const Matrix m = cfg_.pretransformed ? Matrix::identity() : st_.textureTransforms[stage];
+  // Pretransformed vertices are not transformed (the constants hold the identity);
+  // COUNTn / PROJECTED still apply.
+  const int m = kConstVertexTextureTransform + 4 * stage;
   for (int j = 0; j < count; ++j)
-    emit(Op::Dp4, dst(o.file, o.index, uint8_t(1 << j)), t(x), k(column(m, j)));
+    emit(Op::Dp4, dst(o.file, o.index, uint8_t(1 << j)), t(x), column(m, j));
   uint8_t rest = maskFrom(count);
   if (projected && count < 4) {
     // The divisor (last kept component) goes to .w for a projected sample.
-    emit(Op::Dp4, dst(o.file, o.index, kMaskW), t(x), k(column(m, count - 1)));
+    emit(Op::Dp4, dst(o.file, o.index, kMaskW), t(x), column(m, count - 1));
     rest &= uint8_t(~kMaskW);
   }
   if (rest) emit(Op::Mov, dst(o.file, o.index, rest), k(0.0f));
@@ -648,6 +636,95 @@ Program Builder::build() {
 exec::Program buildFixedFunctionVertexProgram(const DeviceState& state,
                                               const FixedFunctionVertexConfig& cfg) {
   return Builder(state, cfg).build();
+}
+
+uint32_t fixedFunctionLightKey(const DeviceState& state, int i) {
+  if (!lightActive(state, i)) return 0;
+  const Light& l = state.lights[size_t(i)];
+  return 1u | l.type << 1 | uint32_t(isBlack(l.ambient)) << 4 | uint32_t(isBlack(l.diffuse)) << 5 |
+         uint32_t(isBlack(l.specular)) << 6 | uint32_t(l.falloff != 1.0f) << 7;
+}
+
+void fixedFunctionVertexConstants(const DeviceState& s, const FixedFunctionVertexConfig& cfg,
+                                  std::vector<Vec4>& c) {
+  const bool indexed = !cfg.pretransformed && s.rs(RS_INDEXEDVERTEXBLENDENABLE) && cfg.blendIndicesType >= 0;
+  c.resize(size_t(indexed ? kConstVertexBlendTableEnd : kConstVertexBlendTable));
+  auto columns = [&](int slot, const Matrix& m, int count) {
+    for (int j = 0; j < count; ++j) c[size_t(slot + j)] = column(m, j);
+  };
+  const Matrix worldView = s.world * s.view;
+  columns(kConstVertexWorldView, worldView, 4);
+  columns(kConstVertexWorldViewProjection, worldView * s.projection, 4);
+  columns(kConstVertexNormalMatrix, normalMatrix(worldView), 3);
+  columns(kConstVertexProjection, s.projection, 4);
+  if (!cfg.pretransformed && s.rs(RS_VERTEXBLEND) >= VBF_1WEIGHTS && s.rs(RS_VERTEXBLEND) <= VBF_3WEIGHTS)
+    for (int i = 0; i < 4; ++i) {
+      const Matrix wv = s.worldMatrix(i) * s.view;
+      columns(kConstVertexBlendMatrices + kConstVertexBlendStride * i, wv, 4);
+      columns(kConstVertexBlendMatrices + kConstVertexBlendStride * i + 4, normalMatrix(wv), 3);
+    }
+  for (int stage = 0; stage < 8; ++stage)
+    columns(kConstVertexTextureTransform + 4 * stage,
+            cfg.pretransformed ? Matrix::identity() : s.textureTransforms[size_t(stage)], 4);
+  const Material& m = s.material;
+  c[kConstVertexMaterial + kMaterialDiffuse] = rgb(m.diffuse);
+  c[kConstVertexMaterial + kMaterialAmbient] = rgb(m.ambient);
+  c[kConstVertexMaterial + kMaterialSpecular] = rgb(m.specular);
+  c[kConstVertexMaterial + kMaterialEmissive] = rgb(m.emissive);
+  c[kConstVertexMaterial + kMaterialPower] = splat(m.power);
+  Color4 ga = colorFromD3D(s.rs(RS_AMBIENT));
+  for (int i = 0; i < 8; ++i) {
+    const Light& l = s.lights[size_t(i)];
+    if (!lightActive(s, i) || l.type != LIGHT_DIRECTIONAL) continue;
+    ga.r += l.ambient.r;
+    ga.g += l.ambient.g;
+    ga.b += l.ambient.b;
+  }
+  c[kConstVertexAmbient] = Vec4(ga.r, ga.g, ga.b, 0);
+  const float start = s.rsFloat(RS_FOGSTART), end = s.rsFloat(RS_FOGEND), density = s.rsFloat(RS_FOGDENSITY);
+  const float range = end - start;
+  const float scale = range != 0 ? 1.0f / range : kHuge;
+  c[kConstVertexFog] = splat(-scale);
+  c[kConstVertexFog + 1] = splat(end * scale);
+  c[kConstVertexFog + 2] = splat(-density * kLog2e);
+  c[kConstVertexFog + 3] = splat(density);
+  c[kConstVertexPointSize] = splat(s.rsFloat(RS_POINTSIZE));
+  c[kConstVertexPointSize + 1] = splat(s.rsFloat(RS_POINTSCALE_A));
+  c[kConstVertexPointSize + 2] = splat(s.rsFloat(RS_POINTSCALE_B));
+  c[kConstVertexPointSize + 3] = splat(s.rsFloat(RS_POINTSCALE_C));
+  c[kConstVertexPointSize + 4] = splat(float(s.viewport.height));
+  c[kConstVertexPointSize + 5] = splat(s.rsFloat(RS_POINTSIZE_MIN));
+  c[kConstVertexPointSize + 6] = splat(s.rsFloat(RS_POINTSIZE_MAX));
+  c[kConstVertexTweenFactor] = splat(s.rsFloat(RS_TWEENFACTOR));
+  for (int i = 0; i < 8; ++i) {
+    if (!lightActive(s, i)) continue;
+    const Light& l = s.lights[size_t(i)];
+    Vec4* v = &c[size_t(kConstVertexLights + kConstVertexLightStride * i)];
+    const Vec3 d = normalize(-transformNormal(l.direction, s.view));
+    v[kLightDirection] = Vec4(d, 0);
+    v[kLightPosition] = Vec4(transformCoord(l.position, s.view), 0);
+    v[kLightAttenuation0] = splat(l.attenuation0);
+    v[kLightAttenuation1] = splat(l.attenuation1);
+    v[kLightAttenuation2] = splat(l.attenuation2);
+    v[kLightRange] = splat(l.range);
+    const float cosTheta = std::cos(l.theta * 0.5f), cosPhi = std::cos(l.phi * 0.5f);
+    const float band = cosTheta - cosPhi;
+    const float spotScale = band > 0 ? 1.0f / band : kHuge;  // no band: a hard edge at Phi
+    v[kLightCosPhi] = splat(cosPhi);
+    v[kLightSpotScale] = splat(spotScale);
+    v[kLightSpotOffset] = splat(-cosPhi * spotScale);
+    v[kLightFalloff] = splat(l.falloff);
+    v[kLightAmbient] = rgb(l.ambient);
+    v[kLightDiffuse] = rgb(l.diffuse);
+    v[kLightSpecular] = rgb(l.specular);
+    v[kLightHalfway] = Vec4(normalize(d + kNonLocalViewer), 0);
+  }
+  if (indexed)
+    for (int i = 0; i < kMaxWorldMatrices; ++i) {
+      const Matrix wv = s.worldMatrix(i) * s.view;
+      columns(kConstVertexBlendTable + kConstVertexBlendStride * i, wv, 4);
+      columns(kConstVertexBlendTable + kConstVertexBlendStride * i + 4, normalMatrix(wv), 3);
+    }
 }
 
 }  // namespace refx::pipeline

@@ -3,6 +3,8 @@
 // fixed-function draws run on the same engine as vertex shaders.
 #pragma once
 #include <array>
+#include <cstdint>
+#include <vector>
 
 #include "refx/exec/abi.h"
 #include "refx/exec/ir.h"
@@ -49,7 +51,18 @@ struct FixedFunctionVertexConfig {
   bool hasPosition1 = false, hasNormal1 = false;
 };
 
+// The program reads the draw's values from constants (exec/abi.h kConstVertex*);
+// its structure depends on the state the draw plan's key holds, including
+// fixedFunctionLightKey for every light.
 exec::Program buildFixedFunctionVertexProgram(const DeviceState& state,
                                               const FixedFunctionVertexConfig& cfg);
+
+// What of light i shapes the program: whether it takes part, its type, which of its
+// colours are black, whether its falloff is 1.
+uint32_t fixedFunctionLightKey(const DeviceState& state, int i);
+
+// The constant array the program reads, from the state's current values.
+void fixedFunctionVertexConstants(const DeviceState& state, const FixedFunctionVertexConfig& cfg,
+                                  std::vector<Vec4>& constants);
 
 }  // namespace refx::pipeline

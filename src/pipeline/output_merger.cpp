@@ -296,7 +296,6 @@ static bool opaqueStore(const RasterDraw& d, const ColorTarget& t) {
 
 void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::LaneVec4* colors,
                 const float* z, bool depthAlreadyTested, bool counterClockwise) {
-  const DeviceState& st = *d.state;
   if (!d.alphaTest && !d.stencil && (!d.depthTest || depthAlreadyTested) &&
       std::all_of(d.targets.begin(), d.targets.end(), [&](const ColorTarget& t) { return opaqueStore(d, t); })) {
     for (size_t i = 0; i < d.targets.size(); ++i)
@@ -310,27 +309,26 @@ void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::
     // failing pixel is discarded from every target.
     if (d.alphaTest) {
       int a8 = toUnorm8(colors[0].c[3][l]);
-      if (!compareU(d.alphaFunc, uint32_t(a8), st.rs(RS_ALPHAREF) & 0xff)) continue;
+      if (!compareU(d.alphaFunc, uint32_t(a8), d.alphaRef)) continue;
     }
     const size_t pi = size_t(y) * d.width + x;
     if (d.stencil && d.depth) {
       uint8_t& s = d.depth->stencil[pi];
-      const uint8_t ref = uint8_t(st.rs(RS_STENCILREF)), rmask = uint8_t(st.rs(RS_STENCILMASK));
-      const uint8_t wmask = uint8_t(st.rs(RS_STENCILWRITEMASK));
+      const uint8_t ref = d.stencilRef, rmask = d.stencilMask;
+      const uint8_t wmask = d.stencilWriteMask;
       // Two-sided stencil: counter-clockwise primitives use the CCW_ states.
-      const bool ccw = counterClockwise && st.rs(RS_TWOSIDEDSTENCILMODE) != 0;
-      const uint32_t func = st.rs(ccw ? RS_CCW_STENCILFUNC : RS_STENCILFUNC);
-      if (!compareU(func, ref & rmask, s & rmask)) {
-        s = stencilOp(st.rs(ccw ? RS_CCW_STENCILFAIL : RS_STENCILFAIL), s, ref, wmask);
+      const std::array<uint32_t, 4>& ops = d.stencilOps[counterClockwise ? 1 : 0];
+      if (!compareU(ops[0], ref & rmask, s & rmask)) {
+        s = stencilOp(ops[1], s, ref, wmask);
         continue;
       }
       bool zpass = true;
       if (d.depthTest && !depthAlreadyTested) zpass = compare(d.depthFunc, z[l], d.depth->depth[pi]);
       if (!zpass) {
-        s = stencilOp(st.rs(ccw ? RS_CCW_STENCILZFAIL : RS_STENCILZFAIL), s, ref, wmask);
+        s = stencilOp(ops[2], s, ref, wmask);
         continue;
       }
-      s = stencilOp(st.rs(ccw ? RS_CCW_STENCILPASS : RS_STENCILPASS), s, ref, wmask);
+      s = stencilOp(ops[3], s, ref, wmask);
       if (d.depthTest && d.depthWrite && !depthAlreadyTested) d.depth->depth[pi] = z[l];
     } else if (d.depthTest && !depthAlreadyTested) {
       if (!compare(d.depthFunc, z[l], d.depth->depth[pi])) continue;
@@ -342,6 +340,100 @@ void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::
       writePixel(d, d.targets[i], x, y, src);
     }
   }
+}
+
+// --- Merges specialised for common states --------------------------------------------
+
+namespace {
+
+enum class BlendKind { None, SrcAlpha, One };  // ADD of SRCALPHA/INVSRCALPHA, ONE/ONE
+enum class DepthKind { Off, Less, LessEqual };
+
+// mergeBatch for: no alpha test, no stencil, target 0 alone, 8-bit with every channel
+// written, no sRGB write or dithering; the blend and depth test as the parameters say.
+// The same operations in the same order as the generic path, so the same bytes.
+template <BlendKind B, DepthKind D, bool WriteDepth>
+void mergeSpecialised(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::LaneVec4* colors,
+                      const float* z, bool depthAlreadyTested, bool) {
+  if constexpr (D != DepthKind::Off) {
+    if (!depthAlreadyTested) {
+      if (bx + 4 <= d.width && by + 4 <= d.height) {
+        if constexpr (D == DepthKind::Less)
+          mask = depthRows(d, bx, by, mask, z, WriteDepth, [](v8f a, v8f b) { return a < b; });
+        else
+          mask = depthRows(d, bx, by, mask, z, WriteDepth, [](v8f a, v8f b) { return a <= b; });
+      } else {
+        for (int l = 0; l < kBatchLanes; ++l) {
+          if (!(mask & (1 << l))) continue;
+          float& stored = d.depth->depth[size_t(by + kLaneY[l]) * d.width + (bx + kLaneX[l])];
+          const bool pass = D == DepthKind::Less ? z[l] < stored : z[l] <= stored;
+          if (!pass) mask = uint16_t(mask & ~(1u << l));
+          else if (WriteDepth) stored = z[l];
+        }
+      }
+      if (!mask) return;
+    }
+  }
+  const ColorTarget& t = d.targets[0];
+  const float (*color)[kBatchLanes] = colors[0].c;
+  if constexpr (B == BlendKind::None) {
+    storeOpaque(t, d.width, d.height, bx, by, mask, color);
+  } else {
+    for (int l = 0; l < kBatchLanes; ++l) {
+      if (!(mask & (1 << l))) continue;
+      const int x = bx + kLaneX[l], y = by + kLaneY[l];
+      uint8_t* px = t.data + size_t(y) * t.pitch + size_t(x) * 4;  // B G R A
+      const float dst[4] = {px[2] / 255.0f, px[1] / 255.0f, px[0] / 255.0f, t.hasAlpha ? px[3] / 255.0f : 1.0f};
+      float src[4];
+      for (int c = 0; c < 4; ++c) src[c] = std::clamp(color[c][l], 0.0f, 1.0f);
+      float out[4];
+      if constexpr (B == BlendKind::SrcAlpha) {
+        const float fs = src[3], fd = 1 - src[3];
+        for (int c = 0; c < 4; ++c) out[c] = src[c] * fs + dst[c] * fd;
+      } else {
+        for (int c = 0; c < 4; ++c) out[c] = src[c] * 1.0f + dst[c] * 1.0f;
+      }
+      px[2] = toUnorm8(out[0]);
+      px[1] = toUnorm8(out[1]);
+      px[0] = toUnorm8(out[2]);
+      px[3] = t.hasAlpha ? toUnorm8(out[3]) : 255;
+    }
+  }
+}
+
+template <BlendKind B>
+MergeBatchFn chooseDepth(DepthKind depth, bool write) {
+  switch (depth) {
+    case DepthKind::Off: return mergeSpecialised<B, DepthKind::Off, false>;
+    case DepthKind::Less:
+      return write ? mergeSpecialised<B, DepthKind::Less, true> : mergeSpecialised<B, DepthKind::Less, false>;
+    case DepthKind::LessEqual:
+      return write ? mergeSpecialised<B, DepthKind::LessEqual, true>
+                   : mergeSpecialised<B, DepthKind::LessEqual, false>;
+  }
+  return mergeBatch;
+}
+
+}  // namespace
+
+MergeBatchFn chooseMerge(const MergeState& m) {
+  if (m.alphaTest || m.stencil || m.srgbWrite || m.dither) return mergeBatch;
+  if (m.targets[0] != MergeState::Target::Unorm8Full) return mergeBatch;
+  for (size_t i = 1; i < m.targets.size(); ++i)
+    if (m.targets[i] != MergeState::Target::None) return mergeBatch;
+  DepthKind depth = DepthKind::Off;
+  if (m.depthTest) {
+    if (m.depthFunc == CMP_LESS) depth = DepthKind::Less;
+    else if (m.depthFunc == CMP_LESSEQUAL) depth = DepthKind::LessEqual;
+    else return mergeBatch;
+  }
+  const RasterDraw::Blend& b = m.blend;
+  if (!b.enable) return chooseDepth<BlendKind::None>(depth, m.depthWrite);
+  if (b.op != BLENDOP_ADD || b.opA != BLENDOP_ADD || b.srcA != b.src || b.dstA != b.dst) return mergeBatch;
+  if (b.src == BLEND_SRCALPHA && b.dst == BLEND_INVSRCALPHA)
+    return chooseDepth<BlendKind::SrcAlpha>(depth, m.depthWrite);
+  if (b.src == BLEND_ONE && b.dst == BLEND_ONE) return chooseDepth<BlendKind::One>(depth, m.depthWrite);
+  return mergeBatch;
 }
 
 }  // namespace refx::pipeline

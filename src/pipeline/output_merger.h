@@ -1,5 +1,6 @@
 // Alpha test, stencil, depth test/write, blending and color write for one batch.
 #pragma once
+#include <array>
 #include <cstdint>
 
 #include "raster.h"
@@ -27,5 +28,22 @@ void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::
 // floor(v * 255 + t) where t = (B + 0.5) / 16 and B is the 4x4 Bayer matrix entry of
 // pixel (x & 3, y & 3) -- the same value on average, a pattern instead of one step.
 uint8_t quantizeUnorm8(float v, bool dither, int x, int y);
+
+// The output-merger state a draw plan fixes, as far as it chooses the merge function.
+struct MergeState {
+  RasterDraw::Blend blend{};
+  bool alphaTest = false, depthTest = false, depthWrite = false, earlyDepth = false;
+  bool stencil = false, srgbWrite = false, dither = false;
+  uint32_t depthFunc = 4;
+  // What target n takes from the program (None: not written).
+  enum class Target : uint8_t { None, Unorm8Full, Unorm8Masked, Float };
+  std::array<Target, kMaxRenderTargets> targets{};
+};
+
+// A merge specialised for `m` (no blend, SRCALPHA/INVSRCALPHA or ONE/ONE; depth off or
+// LESS/LESSEQUAL with or without write; no stencil or alpha test; an 8-bit target 0
+// alone with every channel written; no sRGB or dithering), or mergeBatch. Either gives
+// the same bytes and depths.
+MergeBatchFn chooseMerge(const MergeState& m);
 
 }  // namespace refx::pipeline

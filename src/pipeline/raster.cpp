@@ -205,7 +205,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   }
   shaded += static_cast<uint64_t>(__builtin_popcount(mask));
   if (!mask) return;
-  mergeBatch(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
+  (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
 }
 
 void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorker& w,

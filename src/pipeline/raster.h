@@ -61,6 +61,13 @@ struct ColorTarget {
   uint32_t writeMask = 0xf;  // D3DRS_COLORWRITEENABLE (target 0) or COLORWRITEENABLE1-3
 };
 
+struct RasterDraw;
+// Alpha test, depth/stencil, blend and write of one batch (output_merger.h mergeBatch or
+// a version of it specialised for the draw's state).
+using MergeBatchFn = void (*)(const RasterDraw& d, int bx, int by, uint16_t mask,
+                              const exec::LaneVec4* colors, const float* z, bool depthAlreadyTested,
+                              bool counterClockwise);
+
 // Everything the tile workers need for one draw.
 struct RasterDraw {
   const DeviceState* state = nullptr;
@@ -91,6 +98,13 @@ struct RasterDraw {
   bool depthTest = false, depthWrite = false;
   uint32_t depthFunc = 4;
   bool stencil = false;
+  // The reference values and stencil operations (D3DRS_ALPHAREF, STENCIL*, CCW_STENCIL*)
+  // of the draw; ops[0] clockwise, ops[1] counter-clockwise (the CCW_ states with
+  // TWOSIDEDSTENCILMODE): func, fail, zfail, pass.
+  uint8_t alphaRef = 0, stencilRef = 0, stencilMask = 0xff, stencilWriteMask = 0xff;
+  std::array<std::array<uint32_t, 4>, 2> stencilOps{};
+  // The merge for the draw's state; null: mergeBatch.
+  MergeBatchFn merge = nullptr;
   // D3DZB_USEW: the depth tested and written is w / w_far (projectionFarW), from the
   // interpolated 1/w, plus Primitive::wDepthOffset, instead of z.
   bool wBuffer = false;

@@ -27,10 +27,22 @@ struct BlendVertex {
   Vec4 normal1{0, 0, -1, 1};
 };
 
+// The program and the constants it reads (exec/abi.h kConstVertex*) for state s.
+struct BuiltProgram {
+  Program program;
+  std::vector<Vec4> constants;
+};
+BuiltProgram build(const DeviceState& s, const FixedFunctionVertexConfig& c) {
+  BuiltProgram b{buildFixedFunctionVertexProgram(s, c), {}};
+  fixedFunctionVertexConstants(s, c, b.constants);
+  return b;
+}
+
 // Outputs of each vertex; vertex i runs in lane 3*i + 1 of a batch whose other lanes
 // hold an unrelated vertex.
-std::vector<std::array<Vec4, kVertexOutputCount>> run(const Program& p,
+std::vector<std::array<Vec4, kVertexOutputCount>> run(const BuiltProgram& built,
                                                         const std::vector<BlendVertex>& verts) {
+  const Program& p = built.program;
   BatchRegisters regs;
   regs.resize(p);
   auto put = [&](int lane, const BlendVertex& v) {
@@ -51,6 +63,8 @@ std::vector<std::array<Vec4, kVertexOutputCount>> run(const Program& p,
   for (int l = 0; l < kBatchLanes; ++l) put(l, noise);
   for (size_t i = 0; i < verts.size(); ++i) put(int(3 * i + 1), verts[i]);
   ExecContext ctx;
+  ctx.constants = built.constants.data();
+  ctx.constantCount = int(built.constants.size());
   execute(p, ctx, regs);
   std::vector<std::array<Vec4, kVertexOutputCount>> out(verts.size());
   for (size_t i = 0; i < verts.size(); ++i)
@@ -121,7 +135,7 @@ TEST(FixedFunctionVertexBlend, TwoWeightsPerVertexWithView) {
   a.weights = {0.5f, 0.25f, 0, 1};
   b.weights = {0, 1, 0, 1};
   c.weights = {0.25f, 0.25f, 0, 1};
-  auto r = run(buildFixedFunctionVertexProgram(s, blendConfig(2)), {a, b, c});
+  auto r = run(build(s, blendConfig(2)), {a, b, c});
   EXPECT_VEC4(r[0][kVertexOutTex0], 1.75f, 1.25f, 3, 0);
   EXPECT_VEC4(r[1][kVertexOutTex0], 2, 2, 3, 0);
   EXPECT_VEC4(r[2][kVertexOutTex0], 1.5f, 1.25f, 3.75f, 0);
@@ -148,12 +162,12 @@ TEST(FixedFunctionVertexBlend, IndexedUbyte4AndD3DColorPerVertex) {
   a.indices = {4, 250, 0, 0};
   b.weights = {1, 0, 0, 1};
   b.indices = {17, 0, 0, 0};
-  auto r = run(buildFixedFunctionVertexProgram(s, blendConfig(1, DECLTYPE_UBYTE4)), {a, b});
+  auto r = run(build(s, blendConfig(1, DECLTYPE_UBYTE4)), {a, b});
   EXPECT_VEC4(r[0][kVertexOutTex0], 188.5f, 0, 0, 0);
   EXPECT_VEC4(r[1][kVertexOutTex0], 17, 0, 0, 0);
   a.indices = {4 / 255.0f, 250 / 255.0f, 0, 1};
   b.indices = {17 / 255.0f, 0, 0, 1};
-  r = run(buildFixedFunctionVertexProgram(s, blendConfig(1, DECLTYPE_D3DCOLOR)), {a, b});
+  r = run(build(s, blendConfig(1, DECLTYPE_D3DCOLOR)), {a, b});
   EXPECT_VEC4(r[0][kVertexOutTex0], 188.5f, 0, 0, 0);
   EXPECT_VEC4(r[1][kVertexOutTex0], 17, 0, 0, 0);
 }
@@ -173,10 +187,10 @@ TEST(FixedFunctionVertexBlend, IndexedNormalsUseEachMatrixInverseTranspose) {
   v.normal = {1, 1, 0, 1};
   v.weights = {0.5f, 0.25f, 0.125f, 1};
   v.indices = {3, 5, 7, 9};
-  auto r = run(buildFixedFunctionVertexProgram(s, blendConfig(3, DECLTYPE_UBYTE4)), {v});
+  auto r = run(build(s, blendConfig(3, DECLTYPE_UBYTE4)), {v});
   EXPECT_VEC4(r[0][kVertexOutTex0 + 1], 0.75f, 0.8125f, 0, 0);
   s.renderStates[RS_NORMALIZENORMALS] = 1;
-  r = run(buildFixedFunctionVertexProgram(s, blendConfig(3, DECLTYPE_UBYTE4)), {v});
+  r = run(build(s, blendConfig(3, DECLTYPE_UBYTE4)), {v});
   const float len = std::sqrt(0.75f * 0.75f + 0.8125f * 0.8125f);
   EXPECT_VEC4(r[0][kVertexOutTex0 + 1], 0.75f / len, 0.8125f / len, 0, 0);
 }
@@ -190,10 +204,10 @@ TEST(FixedFunctionVertexBlend, ZeroWeightsIndexedUsesIndexZero) {
   BlendVertex v;
   v.pos = {1, 0, 0, 1};
   v.indices = {6, 0, 0, 0};
-  auto r = run(buildFixedFunctionVertexProgram(s, blendConfig(0, DECLTYPE_UBYTE4)), {v});
+  auto r = run(build(s, blendConfig(0, DECLTYPE_UBYTE4)), {v});
   EXPECT_VEC4(r[0][kVertexOutTex0], 1, 0, 2, 0);
   s.renderStates[RS_INDEXEDVERTEXBLENDENABLE] = 1;
-  r = run(buildFixedFunctionVertexProgram(s, blendConfig(0, DECLTYPE_UBYTE4)), {v});
+  r = run(build(s, blendConfig(0, DECLTYPE_UBYTE4)), {v});
   EXPECT_VEC4(r[0][kVertexOutTex0], 1, 6, 0, 0);
 }
 
@@ -209,11 +223,11 @@ TEST(FixedFunctionVertexBlend, TweeningBlendsPositionAndNormal) {
   v.normal1 = {0, -1, 0, 1};
   FixedFunctionVertexConfig c = blendConfig(0);
   c.hasPosition1 = c.hasNormal1 = true;
-  auto r = run(buildFixedFunctionVertexProgram(s, c), {v});
+  auto r = run(build(s, c), {v});
   EXPECT_VEC4(r[0][kVertexOutTex0], 1, 2, 1, 0);
   EXPECT_VEC4(r[0][kVertexOutTex0 + 1], 0, -0.25f, -0.75f, 0);
   // Without POSITION1/NORMAL1 in the declaration there is nothing to tween toward.
-  auto r0 = run(buildFixedFunctionVertexProgram(s, blendConfig(0)), {v});
+  auto r0 = run(build(s, blendConfig(0)), {v});
   EXPECT_VEC4(r0[0][kVertexOutTex0], 0, 0, 1, 0);
   EXPECT_VEC4(r0[0][kVertexOutTex0 + 1], 0, 0, -1, 0);
 }
@@ -245,7 +259,7 @@ TEST(FixedFunctionVertexBlend, PointLightAndSpecularUseBlendedPosition) {
   s.renderStates[RS_SPECULARMATERIALSOURCE] = MCS_MATERIAL;
   BlendVertex v;
   v.weights = {0.5f, 0, 0, 1};
-  auto r = run(buildFixedFunctionVertexProgram(s, blendConfig(1)), {v});
+  auto r = run(build(s, blendConfig(1)), {v});
   // diffuse = Md * atten * N.L = 0.25; specular = Ms * atten = 0.25
   // (the unblended distance 1 would give atten 2: 0.5 and 0.5).
   EXPECT_NEAR(r[0][kVertexOutDiffuse].x, 0.25f, kTol);

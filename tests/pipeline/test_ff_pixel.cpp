@@ -87,7 +87,11 @@ class FFPixel : public ::testing::Test {
     fill(regs.outputs[kPixelOutColor], presetOutput);
     SamplerBinding bind[8];
     for (int i = 0; i < 8; ++i) bind[i] = {&samplers[i], fakeSample};
+    std::vector<Vec4> constants;
+    fixedFunctionPixelConstants(state, constants);
     ExecContext ctx;
+    ctx.constants = constants.data();
+    ctx.constantCount = int(constants.size());
     ctx.samplers = bind;
     ctx.samplerCount = 8;
     exec::execute(p, ctx, regs);

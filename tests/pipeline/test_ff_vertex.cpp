@@ -42,7 +42,19 @@ struct Result {
 // program that mixes lanes shows up as a wrong value.
 constexpr int kLanes[] = {5, 0, 15, 9, 2, 12, 7, 3};
 
-std::vector<Result> run(const Program& p, const std::vector<Vertex>& verts) {
+// The program and the constants it reads (exec/abi.h kConstVertex*) for state s.
+struct BuiltProgram {
+  Program program;
+  std::vector<Vec4> constants;
+};
+BuiltProgram build(const DeviceState& s, const FixedFunctionVertexConfig& c) {
+  BuiltProgram b{buildFixedFunctionVertexProgram(s, c), {}};
+  fixedFunctionVertexConstants(s, c, b.constants);
+  return b;
+}
+
+std::vector<Result> run(const BuiltProgram& built, const std::vector<Vertex>& verts) {
+  const Program& p = built.program;
   EXPECT_EQ(p.inputCount, kVertexInputCount);
   EXPECT_EQ(p.outputCount, kVertexOutputCount);
   BatchRegisters regs;
@@ -68,6 +80,8 @@ std::vector<Result> run(const Program& p, const std::vector<Vertex>& verts) {
   for (int l = 0; l < kBatchLanes; ++l) put(l, noise);
   for (size_t i = 0; i < verts.size(); ++i) put(kLanes[i], verts[i]);
   ExecContext ctx;
+  ctx.constants = built.constants.data();
+  ctx.constantCount = int(built.constants.size());
   execute(p, ctx, regs);
   std::vector<Result> out(verts.size());
   for (size_t i = 0; i < verts.size(); ++i)
@@ -140,7 +154,7 @@ TEST(FFVertex, WorldViewProjectionTransform) {
   // fovy 90°, aspect 1, zn 1, zf 101: xs = ys = 1, _33 = 101/100 = 1.01, _34 = 1, _43 = -1.01
   s.projection = matrixPerspectiveFovLH(kPi / 2, 1, 1, 101);
   s.renderStates[RS_LIGHTING] = 0;
-  auto r = run(buildFixedFunctionVertexProgram(s, {}), {at({0, 0, 0}), at({1, -1, 2})});
+  auto r = run(build(s, {}), {at({0, 0, 0}), at({1, -1, 2})});
   // (0,0,0) -> world (1,2,3) -> view (2,4,6) -> clip (2, 4, 6*1.01 - 1.01, 6)
   EXPECT_VEC4(r[0].pos(), 2, 4, 5.05f, 6, kTol);
   // (1,-1,2) -> world (2,1,5) -> view (4,2,10) -> clip (4, 2, 10*1.01 - 1.01, 10)
@@ -153,7 +167,7 @@ TEST(FFVertex, DirectionalDiffuseIsNdotLTimesMaterial) {
   // Ldir = -Direction = (sin 60°, 0, -cos 60°); with N = (0,0,-1): N·L = cos 60° = 0.5
   s.lights[0] = directional({-std::sin(kPi / 3), 0, 0.5f});
   s.lightEnabled[0] = true;
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()),
+  auto r = run(build(s, withNormal()),
                {at({0, 0, 5}, {0, 0, -1}), at({1, 1, 5}, {0, 0, 1}), at({0, 0, 5}, {1, 0, 0})});
   // 0.5 * (0.8, 0.6, 0.4); alpha = material diffuse alpha
   EXPECT_VEC4(r[0].diffuse(), 0.4f, 0.3f, 0.2f, 0.5f, kTol);
@@ -173,7 +187,7 @@ TEST(FFVertex, LightAndNormalGoToCameraSpace) {
   s.lightEnabled[0] = true;
   s.view = matrixRotationY(1.1f) * matrixTranslation(0.5f, -2, 7);
   s.world = matrixRotationX(0.0f);
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, 5}, {0, 0, -1})});
+  auto r = run(build(s, withNormal()), {at({0, 0, 5}, {0, 0, -1})});
   // N·L = cos 60° = 0.5 regardless of the view
   EXPECT_RGB(r[0].diffuse(), 0.5f, 0.5f, 0.5f, kTol);
 }
@@ -184,7 +198,7 @@ TEST(FFVertex, PointLightAttenuationAndRange) {
   s.lights[0].diffuse = {1, 1, 1, 0};
   s.lightEnabled[0] = true;
   // Light at the origin, vertices on +z facing it: Ldir = (0,0,-1), N·L = 1.
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()),
+  auto r = run(build(s, withNormal()),
                {at({0, 0, 2}), at({0, 0, 1}), at({0, 0, 4}), at({0, 0, 3})});
   // d = 2: 1/(1 + 0.5*2) = 1/2
   EXPECT_RGB(r[0].diffuse(), 0.5f, 0.5f, 0.5f, kTol);
@@ -201,7 +215,7 @@ TEST(FFVertex, PointLightAttenuationAndRange) {
   // Position in camera space: the view moves the light too (world light at z=-3, view +3).
   s.lights[0].position = {0, 0, -3};
   s.view = matrixTranslation(0, 0, 3);
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, -1})});
+  r = run(build(s, withNormal()), {at({0, 0, -1})});
   EXPECT_RGB(r[0].diffuse(), 0.5f, 0.5f, 0.5f, kTol);
 }
 
@@ -220,7 +234,7 @@ TEST(FFVertex, SpotConeAndFalloff) {
   auto towardLight = [](Vec3 p) { return at(p, normalize(-p)); };
   std::vector<Vertex> v = {towardLight({0, 0, 2}), towardLight({1.5f, 0, 2}),
                            towardLight({3, 0, 2})};
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()), v);
+  auto r = run(build(s, withNormal()), v);
   const float cosT = std::cos(kPi / 6), cosP = std::cos(kPi / 4);
   // on the axis: rho = 1 > cos(Theta/2) -> 1
   EXPECT_RGB(r[0].diffuse(), 1, 1, 1, kTol);
@@ -231,13 +245,13 @@ TEST(FFVertex, SpotConeAndFalloff) {
   EXPECT_RGB(r[2].diffuse(), 0, 0, 0, kTol);
 
   s.lights[0].falloff = 2;  // band factor squared: 0.5845² = 0.3417
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), v);
+  r = run(build(s, withNormal()), v);
   EXPECT_RGB(r[0].diffuse(), 1, 1, 1, kTol);
   EXPECT_RGB(r[1].diffuse(), band * band, band * band, band * band, kTol);
   EXPECT_RGB(r[2].diffuse(), 0, 0, 0, kTol);
 
   s.lights[0].falloff = 0;  // outside Phi stays dark even though x^0 = 1
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), v);
+  r = run(build(s, withNormal()), v);
   EXPECT_RGB(r[1].diffuse(), 1, 1, 1, kTol);
   EXPECT_RGB(r[2].diffuse(), 0, 0, 0, kTol);
 }
@@ -254,14 +268,14 @@ TEST(FFVertex, AmbientGlobalAndPerLight) {
   s.lights[0] = d;
   s.lights[3] = p;
   s.lightEnabled[0] = s.lightEnabled[3] = true;
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, 2})});
+  auto r = run(build(s, withNormal()), {at({0, 0, 2})});
   // Ambient_m * (Ga + 0.1 + 0.4*0.5) = (1, 0.5, 0.25) * 0.550980
   const float a = 64 / 255.0f + 0.1f + 0.2f;
   EXPECT_VEC4(r[0].diffuse(), a, 0.5f * a, 0.25f * a, 1, kTol);
 
   // A point light out of range contributes no ambient either.
   s.lights[3].range = 1;
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, 2})});
+  r = run(build(s, withNormal()), {at({0, 0, 2})});
   const float b = 64 / 255.0f + 0.1f;
   EXPECT_RGB(r[0].diffuse(), b, 0.5f * b, 0.25f * b, kTol);
 }
@@ -281,37 +295,37 @@ TEST(FFVertex, EmissiveAndMaterialColorSources) {
   // emissive + vertex diffuse * 1
   FixedFunctionVertexConfig cfg = withNormal();
   cfg.hasDiffuse = true;
-  auto r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  auto r = run(build(s, cfg), {v});
   EXPECT_VEC4(r[0].diffuse(), 0.1f + 0.5f, 0.2f + 0.25f, 0.3f + 0.125f, 0.6f, kTol);
 
   // No vertex diffuse: the material member is used.
   cfg.hasDiffuse = false;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  r = run(build(s, cfg), {v});
   EXPECT_VEC4(r[0].diffuse(), 0.1f + 0.2f, 0.2f + 0.4f, 0.3f + 0.6f, 0.8f, kTol);
 
   // Source MATERIAL ignores the vertex color.
   cfg.hasDiffuse = true;
   s.renderStates[RS_DIFFUSEMATERIALSOURCE] = MCS_MATERIAL;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  r = run(build(s, cfg), {v});
   EXPECT_VEC4(r[0].diffuse(), 0.3f, 0.6f, 0.9f, 0.8f, kTol);
 
   // COLORVERTEX FALSE: material even with COLOR1.
   s.renderStates[RS_DIFFUSEMATERIALSOURCE] = MCS_COLOR1;
   s.renderStates[RS_COLORVERTEX] = 0;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  r = run(build(s, cfg), {v});
   EXPECT_VEC4(r[0].diffuse(), 0.3f, 0.6f, 0.9f, 0.8f, kTol);
 
   // Emissive from COLOR2 (vertex specular), diffuse from COLOR1.
   s.renderStates[RS_COLORVERTEX] = 1;
   s.renderStates[RS_EMISSIVEMATERIALSOURCE] = MCS_COLOR2;
   cfg.hasSpecular = true;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  r = run(build(s, cfg), {v});
   EXPECT_RGB(r[0].diffuse(), 0.3f + 0.5f, 0.3f + 0.25f, 0.3f + 0.125f, kTol);
 
   // Results are clamped to [0,1]: emissive 0.9 + diffuse 0.5 -> 1.
   s.renderStates[RS_EMISSIVEMATERIALSOURCE] = MCS_MATERIAL;
   s.material.emissive = {0.9f, 0.9f, 0.9f, 0};
-  r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  r = run(build(s, cfg), {v});
   EXPECT_RGB(r[0].diffuse(), 1, 1, 1, kTol);
 }
 
@@ -330,13 +344,13 @@ TEST(FFVertex, SpecularLocalAndNonLocalViewer) {
   // LOCALVIEWER TRUE: V = normalize(-P) = (-0.7071, 0, -0.7071);
   // H = normalize(V + L) = (-0.38268, 0, -0.92388); N·H = cos 22.5°; spec = cos(22.5°)^10 = 0.4531
   s.renderStates[RS_LOCALVIEWER] = 1;
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()), v);
+  auto r = run(build(s, withNormal()), v);
   const float sp = std::pow(std::cos(kPi / 8), 10.0f);
   EXPECT_RGB(r[0].specular(), sp, 0.5f * sp, sp, kTol);
 
   // LOCALVIEWER FALSE: V = (0,0,-1); H = (0,0,-1); N·H = 1 -> spec = 1 * material specular
   s.renderStates[RS_LOCALVIEWER] = 0;
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), v);
+  r = run(build(s, withNormal()), v);
   EXPECT_RGB(r[0].specular(), 1, 0.5f, 1, kTol);
 
   // A point light on the same line: same H, atten 1 -> the same local-viewer highlight.
@@ -344,12 +358,12 @@ TEST(FFVertex, SpecularLocalAndNonLocalViewer) {
   Light p = point({5, 0, 0}, 1, 0, 0, 100);
   p.specular = {1, 1, 1, 0};
   s.lights[0] = p;
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), v);
+  r = run(build(s, withNormal()), v);
   EXPECT_RGB(r[0].specular(), sp, 0.5f * sp, sp, kTol);
 
   // SPECULARENABLE FALSE: no specular at all.
   s.renderStates[RS_SPECULARENABLE] = 0;
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), v);
+  r = run(build(s, withNormal()), v);
   EXPECT_RGB(r[0].specular(), 0, 0, 0, kTol);
 }
 
@@ -364,7 +378,7 @@ TEST(FFVertex, NoSpecularFromLightBehindSurface) {
   l.specular = {1, 1, 1, 0};
   s.lights[0] = l;
   s.lightEnabled[0] = true;
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, 5})});
+  auto r = run(build(s, withNormal()), {at({0, 0, 5})});
   EXPECT_RGB(r[0].specular(), 0, 0, 0, kTol);
   EXPECT_RGB(r[0].diffuse(), 0, 0, 0, kTol);
 }
@@ -375,16 +389,16 @@ TEST(FFVertex, NormalizeNormalsWithScaledWorld) {
   s.lights[0] = directional({0, 0, 1});
   s.lightEnabled[0] = true;
   // Inverse transpose of 2I is I/2: N = (0,0,-0.5), N·L = 0.5
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, 5})});
+  auto r = run(build(s, withNormal()), {at({0, 0, 5})});
   EXPECT_RGB(r[0].diffuse(), 0.5f, 0.5f, 0.5f, kTol);
   // NORMALIZENORMALS: |N| = 1, N·L = 1
   s.renderStates[RS_NORMALIZENORMALS] = 1;
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, 5})});
+  r = run(build(s, withNormal()), {at({0, 0, 5})});
   EXPECT_RGB(r[0].diffuse(), 1, 1, 1, kTol);
   // Non-uniform scale: world scaling (1, 1, 4), N = (0,0,-1) -> (0,0,-0.25), normalized back to 1.
   s.world = matrixScaling(1, 1, 4);
   s.renderStates[RS_NORMALIZENORMALS] = 0;
-  r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, 1})});
+  r = run(build(s, withNormal()), {at({0, 0, 1})});
   EXPECT_RGB(r[0].diffuse(), 0.25f, 0.25f, 0.25f, kTol);
 }
 
@@ -399,7 +413,7 @@ TEST(FFVertex, LightingFalsePassesVertexColors) {
   v.diffuse = {0.1f, 0.2f, 0.3f, 0.4f};
   v.specular = {0.5f, 0.6f, 0.7f, 0.8f};
   Vertex w = at({1, 0, 5});  // absent colors as the fetcher fills them
-  auto r = run(buildFixedFunctionVertexProgram(s, cfg), {v, w});
+  auto r = run(build(s, cfg), {v, w});
   EXPECT_VEC4(r[0].diffuse(), 0.1f, 0.2f, 0.3f, 0.4f, kTol);
   EXPECT_VEC4(r[0].specular(), 0.5f, 0.6f, 0.7f, 0.8f, kTol);
   // fog disabled: the fog output is the specular alpha
@@ -422,7 +436,7 @@ TEST(FFVertex, VertexFogModes) {
   for (auto& x : v) x.specular = {0.2f, 0.2f, 0.2f, 0.3f};
 
   s.renderStates[RS_FOGVERTEXMODE] = FOG_LINEAR;
-  auto r = run(buildFixedFunctionVertexProgram(s, cfg), v);
+  auto r = run(build(s, cfg), v);
   // (end - d)/(end - start): z = 4 -> 6/8 = 0.75; z = 12 -> -0.25 -> 0; z = 1 -> 1.125 -> 1
   EXPECT_NEAR(r[0].fog(), 0.75f, kTol);
   EXPECT_NEAR(r[0].specular().w, 0.75f, kTol);
@@ -433,33 +447,33 @@ TEST(FFVertex, VertexFogModes) {
   EXPECT_NEAR(r[3].fog(), 0.75f, kTol);
 
   s.renderStates[RS_RANGEFOGENABLE] = 1;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), v);
+  r = run(build(s, cfg), v);
   // |(3,0,4)| = 5 -> (10 - 5)/8 = 0.625
   EXPECT_NEAR(r[3].fog(), 0.625f, kTol);
   EXPECT_NEAR(r[3].specular().w, 0.625f, kTol);
   s.renderStates[RS_RANGEFOGENABLE] = 0;
 
   s.renderStates[RS_FOGVERTEXMODE] = FOG_EXP;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), v);
+  r = run(build(s, cfg), v);
   // e^-(d*density): d = 4 -> e^-2 = 0.135335
   EXPECT_NEAR(r[0].fog(), std::exp(-2.0f), kTol);
 
   s.renderStates[RS_FOGVERTEXMODE] = FOG_EXP2;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), v);
+  r = run(build(s, cfg), v);
   // e^-((d*density)²): d = 4 -> e^-4 = 0.018316
   EXPECT_NEAR(r[0].fog(), std::exp(-4.0f), kTol);
   EXPECT_NEAR(r[0].specular().w, std::exp(-4.0f), kTol);
 
   // Table fog selected: no vertex fog; f stays the vertex specular alpha.
   s.renderStates[RS_FOGTABLEMODE] = FOG_LINEAR;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), v);
+  r = run(build(s, cfg), v);
   EXPECT_NEAR(r[0].fog(), 0.3f, kTol);
   EXPECT_NEAR(r[0].specular().w, 0.3f, kTol);
 
   // FOGVERTEXMODE NONE: f from the specular alpha as well.
   s.renderStates[RS_FOGTABLEMODE] = FOG_NONE;
   s.renderStates[RS_FOGVERTEXMODE] = FOG_NONE;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), v);
+  r = run(build(s, cfg), v);
   EXPECT_NEAR(r[0].fog(), 0.3f, kTol);
 }
 
@@ -469,7 +483,7 @@ TEST(FFVertex, VertexFogWithLightingKeepsLitSpecularColor) {
   s.renderStates[RS_FOGVERTEXMODE] = FOG_LINEAR;
   setFloat(s, RS_FOGSTART, 0);
   setFloat(s, RS_FOGEND, 8);
-  auto r = run(buildFixedFunctionVertexProgram(s, withNormal()), {at({0, 0, 2})});
+  auto r = run(build(s, withNormal()), {at({0, 0, 2})});
   // (8 - 2)/8 = 0.75
   EXPECT_NEAR(r[0].specular().w, 0.75f, kTol);
   EXPECT_NEAR(r[0].fog(), 0.75f, kTol);
@@ -489,7 +503,7 @@ TEST(FFVertex, TexCoordGenerationCameraSpace) {
   Vertex a = at({0, 0, 0});  // camera (0,0,5)
   Vertex b = at({3, 0, -1});  // camera (3,0,4)
   b.tex[1] = {0.25f, 0.75f, 0, 1};
-  auto r = run(buildFixedFunctionVertexProgram(s, cfg), {a, b});
+  auto r = run(build(s, cfg), {a, b});
   EXPECT_VEC4(r[0].tex(0), 0, 0, -1, 0, kTol);
   EXPECT_VEC4(r[0].tex(1), 0, 0, 5, 0, kTol);
   EXPECT_VEC4(r[1].tex(1), 3, 0, 4, 0, kTol);
@@ -505,7 +519,7 @@ TEST(FFVertex, TexCoordGenerationCameraSpace) {
 
   // The camera-space normal follows a rotated view: N=(1,0,0) * RotationY(90°) = (0,0,-1)
   s.view = matrixRotationY(kPi / 2);
-  r = run(buildFixedFunctionVertexProgram(s, cfg), {at({0, 0, 0}, {1, 0, 0})});
+  r = run(build(s, cfg), {at({0, 0, 0}, {1, 0, 0})});
   EXPECT_VEC4(r[0].tex(0), 0, 0, -1, 0, kTol);
 }
 
@@ -531,7 +545,7 @@ TEST(FFVertex, TextureTransformCount2TranslationInRow3) {
   v.tex[0] = {0.1f, 0.2f, 0, 1};
   v.tex[1] = {0.1f, 0.2f, 0.3f, 1};
   v.tex[2] = {0.1f, 0, 0, 1};
-  auto r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  auto r = run(build(s, cfg), {v});
   // (0.1, 0.2, 1, 0) * M = (0.1 + 0.25, 0.2 + 0.5); COUNT2 keeps two, the rest 0
   EXPECT_VEC4(r[0].tex(0), 0.35f, 0.7f, 0, 0, kTol);
   // (0.1, 0.2, 0.3, 1) * T(1,2,3) = (1.1, 2.2, 3.3)
@@ -551,7 +565,7 @@ TEST(FFVertex, ProjectedDivisorInW) {
   cfg.texCoordDims = {0, 4};
   Vertex v = at({1, 2, 4});
   v.tex[1] = {1, 2, 3, 4};
-  auto r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  auto r = run(build(s, cfg), {v});
   // (1,2,4,1) * S(0.5,0.5,1) = (0.5, 1, 4); divisor = component 3 (z) -> w
   EXPECT_VEC4(r[0].tex(0), 0.5f, 1, 4, 4, kTol);
   // COUNT4: the fourth component is already w
@@ -576,7 +590,7 @@ TEST(FFVertex, PretransformedPassThrough) {
   v.diffuse = {0.1f, 0.2f, 0.3f, 0.4f};
   v.specular = {0.5f, 0.6f, 0.7f, 0.8f};
   v.tex[1] = {0.25f, 0.5f, 0, 1};
-  auto r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  auto r = run(build(s, cfg), {v});
   EXPECT_VEC4(r[0].pos(), 100, 50, 0.5f, 0.25f, 0);
   EXPECT_VEC4(r[0].diffuse(), 0.1f, 0.2f, 0.3f, 0.4f, kTol);
   EXPECT_VEC4(r[0].specular(), 0.5f, 0.6f, 0.7f, 0.8f, kTol);
@@ -590,7 +604,7 @@ TEST(FFVertex, PointSizeAndScale) {
   DeviceState s;
   s.renderStates[RS_LIGHTING] = 0;
   setFloat(s, RS_POINTSIZE, 4);
-  auto r = run(buildFixedFunctionVertexProgram(s, {}), {at({0, 0, 5})});
+  auto r = run(build(s, {}), {at({0, 0, 5})});
   EXPECT_NEAR(r[0].psize(), 4, kTol);
   // POINTSCALE: Si * Vh * sqrt(1/(A + B De + C De²)); Si = 0.1, Vh = 100, C = 1, De = 5 -> 2
   setFloat(s, RS_POINTSIZE, 0.1f);
@@ -598,7 +612,7 @@ TEST(FFVertex, PointSizeAndScale) {
   setFloat(s, RS_POINTSCALE_C, 1);
   s.renderStates[RS_POINTSCALEENABLE] = 1;
   s.viewport.height = 100;
-  r = run(buildFixedFunctionVertexProgram(s, {}), {at({3, 0, 4})});
+  r = run(build(s, {}), {at({3, 0, 4})});
   EXPECT_NEAR(r[0].psize(), 2, kTol);
   // Vertex PSIZE 3 with A = 1: 3 * 100 * 1 = 300 -> clamped to POINTSIZE_MAX 64
   setFloat(s, RS_POINTSCALE_A, 1);
@@ -607,7 +621,7 @@ TEST(FFVertex, PointSizeAndScale) {
   cfg.hasPSize = true;
   Vertex v = at({0, 0, 5});
   v.psize = 3;
-  r = run(buildFixedFunctionVertexProgram(s, cfg), {v});
+  r = run(build(s, cfg), {v});
   EXPECT_NEAR(r[0].psize(), 64, kTol);
 }
 
@@ -616,7 +630,7 @@ TEST(FFVertex, NoLightsGivesEmissivePlusAmbient) {
   s.material.emissive = {0.25f, 0, 0, 0};
   s.material.ambient = {0, 1, 0, 0};
   s.renderStates[RS_AMBIENT] = 0xFF808080;  // 128/255
-  auto r = run(buildFixedFunctionVertexProgram(s, {}), {at({0, 0, 5})});
+  auto r = run(build(s, {}), {at({0, 0, 5})});
   // emissive + ambient_m * Ga = (0.25, 128/255, 0); material diffuse alpha 1
   EXPECT_VEC4(r[0].diffuse(), 0.25f, 128 / 255.0f, 0, 1, kTol);
 }

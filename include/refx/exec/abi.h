@@ -66,4 +66,56 @@ constexpr int kConstBumpEnv = 256;
 constexpr int kBumpEnvStages = 8;
 constexpr int kConstBumpEnvCount = 2 * kBumpEnvStages;
 
+// Fixed-function pixel programs, and the fog appended to ps_1_x/ps_2_x shaders, read
+// the draw's values from constants after the bump environment, so a program built for
+// a state serves every value of them:
+//   Const[kConstTextureFactor]        D3DRS_TEXTUREFACTOR as (r, g, b, a)
+//   Const[kConstStageConstant + n]    D3DTSS_CONSTANT of stage n as (r, g, b, a)
+//   Const[kConstBumpEnvRows + 2n]     (BUMPENVMAT00, BUMPENVMAT01, 0, 0) of stage n
+//   Const[kConstBumpEnvRows + 2n + 1] (BUMPENVMAT10, BUMPENVMAT11, 0, 0) of stage n
+//   Const[kConstPixelFog + i]         pixel fog, each value in all four components:
+//                                     i = 0: -1/(end - start), 1: end/(end - start),
+//                                     2: end, 3: -density*log2(e), 4: density*sqrt(log2(e));
+//                                     i = 5: D3DRS_FOGCOLOR as (r, g, b, a)
+// (BUMPENVLSCALE/LOFFSET are read at kConstBumpEnv + 2n + 1 as for pixel shaders.)
+constexpr int kConstTextureFactor = kConstBumpEnv + kConstBumpEnvCount;
+constexpr int kConstStageConstant = kConstTextureFactor + 1;
+constexpr int kConstBumpEnvRows = kConstStageConstant + kBumpEnvStages;
+constexpr int kConstPixelFog = kConstBumpEnvRows + 2 * kBumpEnvStages;
+constexpr int kConstPixelFogCount = 6;
+constexpr int kConstFixedPixelEnd = kConstPixelFog + kConstPixelFogCount;
+
+// Fixed-function vertex programs read the draw's transforms, material, lights, fog and
+// point size from their own constant array (they read no API constants), filled for
+// every draw. Matrices are stored as columns (dp4(v, column j) = component j of v * M);
+// single values in all four components.
+constexpr int kConstVertexWorldView = 0;            // 4 columns of World * View
+constexpr int kConstVertexWorldViewProjection = 4;  // 4 columns of World * View * Projection
+constexpr int kConstVertexNormalMatrix = 8;         // 3 columns: inverse transpose of World * View
+constexpr int kConstVertexProjection = 11;          // 4 columns
+// Vertex blending without indices: matrix i (0-3) at kConstVertexBlendMatrices + 7i,
+// 4 columns of WorldMatrix(i) * View, then 3 columns of its normal matrix.
+constexpr int kConstVertexBlendMatrices = 15;
+constexpr int kConstVertexBlendStride = 7;
+constexpr int kConstVertexTextureTransform = 43;  // stage n: 4 columns at + 4n
+constexpr int kConstVertexMaterial = 75;  // diffuse, ambient, specular, emissive, power
+constexpr int kConstVertexAmbient = 80;   // D3DRS_AMBIENT + the directional lights' ambient, .w 0
+// Vertex fog: -1/(end - start) (or -1e30 when end = start), end/(end - start),
+// -density*log2(e), density.
+constexpr int kConstVertexFog = 81;
+// D3DRS_POINTSIZE, POINTSCALE_A, _B, _C, the viewport height, POINTSIZE_MIN, _MAX.
+constexpr int kConstVertexPointSize = 85;
+constexpr int kConstVertexTweenFactor = 92;
+// Light n at kConstVertexLights + kConstVertexLightStride * n: direction towards the
+// light and position (camera space, .w 0), attenuation 0/1/2, range, cos(phi/2), spot
+// scale 1/(cos(theta/2) - cos(phi/2)), -cos(phi/2) * spot scale, falloff, ambient,
+// diffuse and specular colour, and the half vector of a directional light with a
+// non-local viewer.
+constexpr int kConstVertexLights = 93;
+constexpr int kConstVertexLightStride = 14;
+// Indexed vertex blending: World(m) * View and its normal matrix for all 256 matrices,
+// 7 columns each, addressed relative to the vertex's blend indices.
+constexpr int kConstVertexBlendTable = kConstVertexLights + 8 * kConstVertexLightStride;
+constexpr int kConstVertexBlendTableEnd = kConstVertexBlendTable + 256 * kConstVertexBlendStride;
+
 }  // namespace refx::exec
