@@ -27,10 +27,13 @@ class CycleCounter {
   double hz_ = 0;  // the measured clock of the fallback
 };
 
-// FP32 FLOPs one core can issue per cycle: 16-lane FMA (2 FLOPs) on 2 ports = 64 with
-// AVX-512, 8-lane = 32 with AVX2 + FMA, 4-lane mul + add ports = 8 otherwise.
+// FP32 FLOPs one core issues per cycle, measured: independent FMA chains in the
+// widest vectors the CPU has (16 lanes with AVX-512, 8 with AVX2 + FMA), timed against
+// the clock of a dependent add chain. Measured rather than taken from the ISA because
+// cores differ: some run AVX-512 on two 512-bit FMA ports (64 FLOPs/cycle), others
+// split it over 256-bit units (32).
 struct PeakFlops {
-  int perCycle;
+  double perCycle;
   const char* isa;
 };
 PeakFlops peakFlopsPerCycle();

@@ -489,7 +489,7 @@ int runBench(const BenchOptions& o) {
   const TexturePtr tex = checkerTexture(1024);
   TexturePtr normal;  // made when a shader workload needs it
   std::printf("# cyc/px: cycles of all threads per shaded pixel (%s)\n", cycles.source().c_str());
-  std::printf("# flop-cyc/px: FP32 FLOPs per pixel / %d FLOPs per cycle (%s, 16-lane FMA x 2 ports = 64)\n",
+  std::printf("# flop-cyc/px: FP32 FLOPs per pixel / %.1f FLOPs per cycle (%s FMA throughput, measured)\n",
               peak.perCycle, peak.isa);
   std::printf("%-10s %-7s %-10s %7s %9s %10s %12s %9s %12s\n", "workload", "geom", "res", "threads", "fps",
               "Mpix/s", "px/frame", "cyc/px", "flop-cyc/px");
