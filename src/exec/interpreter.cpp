@@ -5,6 +5,8 @@
 #include <cstring>
 #include <limits>
 
+#include "exec/jit/jit.h"
+
 namespace refx::exec {
 
 namespace {
@@ -943,6 +945,7 @@ struct PreparedProgram {
   const Program* program = nullptr;
   const Instr* code = nullptr;
   size_t size = 0;
+  std::shared_ptr<const detail::JitProgram> jit;  // native code (the steps are unused)
   std::vector<Step> steps;
   std::vector<LaneVec4> uniforms;  // constant and immediate operands, splat over the lanes
 };
@@ -962,15 +965,44 @@ static bool affineMod(SrcMod m, float& scale, float& offset) {
   return false;
 }
 
-void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
-  if (program.flowControl) {  // runs on execution masks: decoded as it runs
+// Native code for `program` in these registers (null: the interpreter runs it).
+static std::shared_ptr<const detail::JitProgram> nativeCode(const Program& program,
+                                                           const BatchRegisters& regs,
+                                                           const PrepareOptions& options,
+                                                           ProgramBuildInfo& info) {
+  detail::JitIsa isa;
+  if (!options.jit || !detail::chooseJitIsa(options, isa)) return nullptr;
+  bool compiled = false;
+  auto jit = detail::jitProgram(program, isa, compiled);
+  if (!jit) return nullptr;
+  if (compiled) info.compileMicroseconds = jit->compileMicroseconds;
+  // Inline code reads registers without bounds checks: every register it addresses
+  // must exist (a missing one reads as zero in the interpreter).
+  if (int(regs.temps.size()) < jit->tempsUsed || int(regs.inputs.size()) < jit->inputsUsed ||
+      int(regs.outputs.size()) < jit->outputsUsed)
+    return nullptr;
+  info.backend = jit->isa == detail::JitIsa::Avx512 ? "jit-avx512" : "jit-avx2";
+  return jit;
+}
+
+ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs,
+                         const PrepareOptions& options) {
+  ProgramBuildInfo info;
+  info.instructions = int(program.code.size());
+  auto jit = nativeCode(program, regs, options, info);
+  if (!jit && program.flowControl) {  // runs on execution masks: decoded as it runs
     regs.prepared.reset();
-    return;
+    return info;
   }
   auto pp = std::make_shared<PreparedProgram>();
   pp->program = &program;
   pp->code = program.code.data();
   pp->size = program.code.size();
+  if (jit) {
+    pp->jit = std::move(jit);
+    regs.prepared = std::move(pp);
+    return info;
+  }
   size_t uniformCount = 0;
   for (const Instr& in : program.code)
     for (int i = 0; i < kSources[uint8_t(in.op)]; ++i)
@@ -1117,20 +1149,41 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
   // Every register ends with its four components, as without preparation.
   for (float* base : std::vector<float*>(narrow)) widen(base);
   regs.prepared = std::move(pp);
+  return info;
 }
 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  const PreparedProgram* pp = regs.prepared.get();
+  const bool prepared = pp && pp->program == &program && pp->code == program.code.data() &&
+                        pp->size == program.code.size();
+  if (prepared && pp->jit) {
+    detail::runJit(*pp->jit, program, ctx, regs);
+    return;
+  }
   if (program.flowControl) {
     executeFlow(program, ctx, regs);
     return;
   }
-  const PreparedProgram* pp = regs.prepared.get();
-  if (pp && pp->program == &program && pp->code == program.code.data() &&
-      pp->size == program.code.size()) {
+  if (prepared) {
     for (const Step& s : pp->steps) s.run(s, ctx, regs);
     return;
   }
   for (const Instr& in : program.code) executeInstr(in, program, ctx, regs);
 }
+
+namespace detail {
+
+void executeInstruction(const Instr& in, const Program& program, const ExecContext& ctx,
+                        BatchRegisters& regs) {
+  executeInstr(in, program, ctx, regs);
+}
+
+float applySourceModifier(float x, SrcMod mod) { return applyMod(x, mod); }
+
+Vec4 uniformRegisterValue(const Src& s, int index, const ExecContext& ctx, const Program& p) {
+  return uniformValue(s, index, ctx, p);
+}
+
+}  // namespace detail
 
 }  // namespace refx::exec

@@ -1,0 +1,421 @@
+// Code generation for IR programs (x86-64, AsmJit's compiler): the 16 lanes of a
+// batch are one zmm register (AVX-512) or two ymm registers (AVX2). Registers stay in
+// memory between instructions, where the interpreter's routines find them: simple
+// ops are emitted inline with the interpreter's exact operation sequence (no fused
+// multiply-add: the interpreter is compiled with -ffp-contract=off), everything
+// else calls the interpreter's routine for that one instruction.
+#include <asmjit/x86.h>
+
+#include <cstddef>
+#include <cstring>
+
+#include "exec/jit/jit.h"
+
+namespace refx::exec::detail {
+
+namespace {
+
+using namespace asmjit;
+
+constexpr int kRegisterBytes = int(sizeof(LaneVec4));
+constexpr int kComponentBytes = kBatchLanes * int(sizeof(float));
+
+JitRuntime& runtime() {
+  static JitRuntime* rt = new JitRuntime;  // code lives as long as the process
+  return *rt;
+}
+
+struct FailOnError : ErrorHandler {
+  Error error = kErrorOk;
+  void handleError(Error err, const char*, BaseEmitter*) override { error = err; }
+};
+
+// Called by generated code: one instruction run by the interpreter.
+void callInstruction(JitFrame* f, uint32_t index) {
+  executeInstruction(f->program->code[index], *f->program, *f->ctx, *f->regs);
+}
+
+bool isLaneFile(RegFile f) { return f == RegFile::Temp || f == RegFile::Input || f == RegFile::Output; }
+
+// Ops the interpreter's prepared path runs with affine source modifiers (v * k + o);
+// the others read sources through applyMod.
+bool affineModifierOp(Op op) {
+  switch (op) {
+    case Op::Mov: case Op::Add: case Op::Sub: case Op::Mul: case Op::Mad: case Op::Min:
+    case Op::Max: case Op::Lrp: case Op::Cmp: case Op::Dp3: case Op::Dp4: return true;
+    default: return false;
+  }
+}
+
+bool affineMod(SrcMod m, float& scale, float& offset) {
+  static const struct { SrcMod m; float scale, offset; } kAffine[] = {
+      {SrcMod::Neg, -1, 0},     {SrcMod::Bias, 1, -0.5f}, {SrcMod::BiasNeg, -1, 0.5f},
+      {SrcMod::Sign, 2, -1},    {SrcMod::SignNeg, -2, 1}, {SrcMod::Comp, -1, 1},
+      {SrcMod::X2, 2, 0},       {SrcMod::X2Neg, -2, 0},
+  };
+  for (const auto& a : kAffine)
+    if (a.m == m) {
+      scale = a.scale, offset = a.offset;
+      return true;
+    }
+  return false;
+}
+
+// 16 lanes: one zmm, or two ymm (p[0] lanes 0..7, p[1] lanes 8..15).
+struct V {
+  x86::Vec p[2];
+};
+
+class Generator {
+ public:
+  Generator(x86::Compiler& cc, const Program& program, JitIsa isa, JitProgram& out)
+      : cc_(cc), program_(program), wide_(isa == JitIsa::Avx512), parts_(wide_ ? 1 : 2), out_(out) {}
+
+  void run() {
+    FuncNode* fn = cc_.addFunc(FuncSignatureT<void, JitFrame*>(CallConvId::kHost));
+    fn->frame().setAvxEnabled();
+    fn->frame().setAvxCleanup();
+    if (wide_) fn->frame().setAvx512Enabled();
+    frame_ = cc_.newIntPtr("frame");
+    fn->setArg(0, frame_);
+    temps_ = load(offsetof(JitFrame, temps));
+    inputs_ = load(offsetof(JitFrame, inputs));
+    outputs_ = load(offsetof(JitFrame, outputs));
+    constants_ = load(offsetof(JitFrame, constants));
+    for (size_t i = 0; i < program_.code.size(); ++i) emitInstruction(uint32_t(i));
+    cc_.endFunc();
+  }
+
+ private:
+  x86::Gp load(size_t offset) {
+    x86::Gp r = cc_.newIntPtr();
+    cc_.mov(r, x86::ptr(frame_, int32_t(offset)));
+    return r;
+  }
+
+  // ------------------------------------------------------------------ selection
+
+  bool inlined(const Instr& in) const {
+    switch (in.op) {
+      case Op::Mov: case Op::Add: case Op::Sub: case Op::Mul: case Op::Mad: case Op::Dp3:
+      case Op::Dp4: case Op::Dp2Add: case Op::Min: case Op::Max: case Op::Slt: case Op::Sge:
+      case Op::Lrp: case Op::Cmp: case Op::Cnd: case Op::Frc: case Op::Floor: case Op::Abs:
+      case Op::Rcp: case Op::Rsq: case Op::Kill: break;
+      default: return false;
+    }
+    if (in.op != Op::Kill && (in.dst.rel != RelMode::None || !isLaneFile(in.dst.file))) return false;
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      const Src& s = in.src[i];
+      if (s.rel != RelMode::None) return false;
+      if (!isLaneFile(s.file) && s.file != RegFile::Const && s.file != RegFile::Imm) return false;
+    }
+    return true;
+  }
+
+  void emitInstruction(uint32_t index) {
+    const Instr& in = program_.code[index];
+    if (!inlined(in)) {
+      emitCall(index);
+      return;
+    }
+    ++out_.inlineInstructions;
+    affine_ = affineModifierOp(in.op);
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      const Src& s = in.src[i];
+      float k, o;
+      if (isLaneFile(s.file) && s.mod != SrcMod::None && !affineMod(s.mod, k, o)) affine_ = false;
+      if (isLaneFile(s.file)) use(s.file, s.index);
+    }
+    if (in.op != Op::Kill) use(in.dst.file, in.dst.index);
+    switch (in.op) {
+      case Op::Mov: emitMov(in); break;
+      case Op::Add: emitAdd(in); break;
+      case Op::Sub: emitSub(in); break;
+      case Op::Mul: emitMul(in); break;
+      case Op::Mad: emitMad(in); break;
+      case Op::Dp3: case Op::Dp4: case Op::Dp2Add: emitDot(in); break;
+      case Op::Min: emitMin(in); break;
+      case Op::Max: emitMax(in); break;
+      case Op::Slt: emitSlt(in); break;
+      case Op::Sge: emitSge(in); break;
+      case Op::Lrp: emitLrp(in); break;
+      case Op::Cmp: emitCmp(in); break;
+      case Op::Cnd: emitCnd(in); break;
+      case Op::Frc: emitFrc(in); break;
+      case Op::Floor: emitFloor(in); break;
+      case Op::Abs: emitAbs(in); break;
+      case Op::Rcp: emitRcp(in); break;
+      case Op::Rsq: emitRsq(in); break;
+      case Op::Kill: emitKill(in); break;
+      default: break;
+    }
+  }
+
+  void use(RegFile f, int index) {
+    int& n = f == RegFile::Temp ? out_.tempsUsed : f == RegFile::Input ? out_.inputsUsed : out_.outputsUsed;
+    n = std::max(n, index + 1);
+  }
+
+  void emitCall(uint32_t index) {
+    ++out_.calledInstructions;
+    InvokeNode* call;
+    cc_.invoke(&call, imm(reinterpret_cast<void*>(&callInstruction)),
+               FuncSignatureT<void, JitFrame*, uint32_t>(CallConvId::kHost));
+    call->setArg(0, frame_);
+    call->setArg(1, imm(index));
+  }
+
+  // ------------------------------------------------------------------ values
+
+  x86::Vec newVec() { return wide_ ? x86::Vec(cc_.newZmmPs()) : x86::Vec(cc_.newYmmPs()); }
+  V newV() {
+    V v;
+    for (int h = 0; h < parts_; ++h) v.p[h] = newVec();
+    return v;
+  }
+  V splatBits(uint32_t bits) {
+    V v;
+    v.p[0] = v.p[1] = newVec();
+    cc_.vbroadcastss(v.p[0], cc_.newDWordConst(ConstPoolScope::kLocal, bits));
+    return v;
+  }
+  V splat(float x) {
+    uint32_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    return splatBits(bits);
+  }
+  V op2(InstId id, const V& a, const V& b) {
+    V r = newV();
+    for (int h = 0; h < parts_; ++h) cc_.emit(id, r.p[h], a.p[h], b.p[h]);
+    return r;
+  }
+  V add(const V& a, const V& b) { return op2(x86::Inst::kIdVaddps, a, b); }
+  V sub(const V& a, const V& b) { return op2(x86::Inst::kIdVsubps, a, b); }
+  V mul(const V& a, const V& b) { return op2(x86::Inst::kIdVmulps, a, b); }
+  V div(const V& a, const V& b) { return op2(x86::Inst::kIdVdivps, a, b); }
+  // a < b ? a : b and a > b ? a : b, as minps/maxps (NaN: b).
+  V min(const V& a, const V& b) { return op2(x86::Inst::kIdVminps, a, b); }
+  V max(const V& a, const V& b) { return op2(x86::Inst::kIdVmaxps, a, b); }
+  V bitAnd(const V& a, uint32_t bits) { return op2(x86::Inst::kIdVandps, a, splatBits(bits)); }
+  V bitOr(const V& a, uint32_t bits) { return op2(x86::Inst::kIdVorps, a, splatBits(bits)); }
+  V bitXor(const V& a, uint32_t bits) { return op2(x86::Inst::kIdVxorps, a, splatBits(bits)); }
+  // Rounding of roundps/rndscaleps: 1 = down (floor), 4 = the MXCSR mode; 8 = no
+  // precision exception.
+  V round(const V& a, int mode) {
+    V r = newV();
+    for (int h = 0; h < parts_; ++h) {
+      if (wide_) cc_.vrndscaleps(r.p[h], a.p[h], imm(mode | 8));
+      else cc_.vroundps(r.p[h], a.p[h], imm(mode | 8));
+    }
+    return r;
+  }
+  // compare(a, b) ? t : f with a vcmpps predicate (ordered, NaN false).
+  static constexpr int kLess = 0x01, kGreaterEqual = 0x0D, kGreater = 0x0E;
+  V select(int predicate, const V& a, const V& b, const V& t, const V& f) {
+    V r = newV();
+    for (int h = 0; h < parts_; ++h) {
+      if (wide_) {
+        x86::KReg k = cc_.newKw();
+        cc_.vcmpps(k, a.p[h], b.p[h], imm(predicate));
+        cc_.k(k).vblendmps(r.p[h], f.p[h], t.p[h]);
+      } else {
+        x86::Vec m = newVec();
+        cc_.vcmpps(m, a.p[h], b.p[h], imm(predicate));
+        cc_.vblendvps(r.p[h], f.p[h], t.p[h], m);
+      }
+    }
+    return r;
+  }
+
+  x86::Gp base(RegFile f) const { return f == RegFile::Temp ? temps_ : f == RegFile::Input ? inputs_ : outputs_; }
+  x86::Mem lane(RegFile f, int index, int c, int h) const {
+    return x86::ptr(base(f), index * kRegisterBytes + c * kComponentBytes + h * 32);
+  }
+
+  // Source i of `in`, component c: swizzle, unit clamp and modifier as the
+  // interpreter applies them.
+  V source(const Instr& in, int i, int c) {
+    const Src& s = in.src[i];
+    const int comp = (s.swizzle >> (2 * c)) & 3;
+    if (isLaneFile(s.file)) {
+      V v = newV();
+      for (int h = 0; h < parts_; ++h) cc_.vmovups(v.p[h], lane(s.file, s.index, comp, h));
+      if (s.mod == SrcMod::None) return v;
+      float k, o;
+      if (affine_ && affineMod(s.mod, k, o)) {
+        // The prepared path: v * k + o (o = -0 adds nothing).
+        v = mul(v, splat(k));
+        return o == 0.0f ? v : add(v, splat(o));
+      }
+      return modify(v, s.mod);
+    }
+    const bool local = s.file == RegFile::Const && size_t(s.index) < program_.localConstants.size() &&
+                       program_.localConstants[s.index] >= 0;
+    if (s.file == RegFile::Imm || local) {  // program content: the value is known now
+      const Vec4 v = uniformRegisterValue(s, s.index, ExecContext{}, program_);
+      return splat(applySourceModifier(v[comp], s.mod));
+    }
+    // An API constant, read when the code runs.
+    out_.constantsRead = std::max(out_.constantsRead, int(s.index) + 1);
+    V v;
+    v.p[0] = v.p[1] = newVec();
+    cc_.vbroadcastss(v.p[0], x86::dword_ptr(constants_, int(s.index) * int(sizeof(Vec4)) + comp * 4));
+    if (s.flags & kSrcClampUnit) v = min(splat(1.0f), max(splat(-1.0f), v));  // std::min(std::max(v, -1), 1)
+    return modify(v, s.mod);
+  }
+
+  // applyMod, lane by lane.
+  V modify(const V& v, SrcMod m) {
+    constexpr uint32_t kSign = 0x80000000u, kMagnitude = 0x7fffffffu;
+    switch (m) {
+      case SrcMod::None: return v;
+      case SrcMod::Neg: return bitXor(v, kSign);
+      case SrcMod::Bias: return sub(v, splat(0.5f));
+      case SrcMod::BiasNeg: return bitXor(sub(v, splat(0.5f)), kSign);
+      case SrcMod::Sign: return mul(splat(2.0f), sub(v, splat(0.5f)));
+      case SrcMod::SignNeg: return mul(splat(-2.0f), sub(v, splat(0.5f)));
+      case SrcMod::Comp: return sub(splat(1.0f), v);
+      case SrcMod::X2: return mul(splat(2.0f), v);
+      case SrcMod::X2Neg: return mul(splat(-2.0f), v);
+      case SrcMod::Abs: return bitAnd(v, kMagnitude);
+      case SrcMod::AbsNeg: return bitOr(v, kSign);
+    }
+    return v;
+  }
+
+  // Stores the written components with the result modifiers: shift, then saturate or
+  // clamp (vmin(vmax(r, lo), hi): NaN becomes lo), then the fixed-point grid. Every
+  // source is read before.
+  void store(const Instr& in, const V* r) {
+    const bool clamp = in.saturate || in.clamp;
+    for (int c = 0; c < 4; ++c) {
+      if (!(in.dst.mask >> c & 1)) continue;
+      V v = r[c];
+      if (in.shift != 0) v = mul(v, splat(std::ldexp(1.0f, in.shift)));
+      if (clamp) v = min(max(v, splat(in.saturate ? 0.0f : in.clampLo)), splat(in.saturate ? 1.0f : in.clampHi));
+      // Fixed point of `quantize` fractional bits: nearbyint(v * 2^q) * 2^-q.
+      if (in.quantize)
+        v = mul(round(mul(v, splat(std::ldexp(1.0f, in.quantize))), 4), splat(std::ldexp(1.0f, -in.quantize)));
+      for (int h = 0; h < parts_; ++h) cc_.vmovups(lane(in.dst.file, in.dst.index, c, h), v.p[h]);
+    }
+  }
+
+  // Per-component ops: f(sources of component c) for each written component.
+  template <class F>
+  void perComponent(const Instr& in, F f) {
+    const int n = sourceCount(in.op);
+    V r[4];
+    for (int c = 0; c < 4; ++c) {
+      if (!(in.dst.mask >> c & 1)) continue;
+      V s[3];
+      for (int i = 0; i < n; ++i) s[i] = source(in, i, c);
+      r[c] = f(s);
+    }
+    store(in, r);
+  }
+
+  // ------------------------------------------------------------------ one emitter per op
+
+  void emitMov(const Instr& in) { perComponent(in, [&](const V* s) { return s[0]; }); }
+  void emitAdd(const Instr& in) { perComponent(in, [&](const V* s) { return add(s[0], s[1]); }); }
+  void emitSub(const Instr& in) { perComponent(in, [&](const V* s) { return sub(s[0], s[1]); }); }
+  void emitMul(const Instr& in) { perComponent(in, [&](const V* s) { return mul(s[0], s[1]); }); }
+  void emitMad(const Instr& in) { perComponent(in, [&](const V* s) { return add(mul(s[0], s[1]), s[2]); }); }
+  void emitMin(const Instr& in) { perComponent(in, [&](const V* s) { return min(s[0], s[1]); }); }
+  void emitMax(const Instr& in) { perComponent(in, [&](const V* s) { return max(s[0], s[1]); }); }
+  void emitSlt(const Instr& in) {
+    perComponent(in, [&](const V* s) { return select(kLess, s[0], s[1], splat(1.0f), splat(0.0f)); });
+  }
+  void emitSge(const Instr& in) {
+    perComponent(in, [&](const V* s) { return select(kGreaterEqual, s[0], s[1], splat(1.0f), splat(0.0f)); });
+  }
+  // s0 * (s1 - s2) + s2
+  void emitLrp(const Instr& in) {
+    perComponent(in, [&](const V* s) { return add(mul(s[0], sub(s[1], s[2])), s[2]); });
+  }
+  void emitCmp(const Instr& in) {
+    perComponent(in, [&](const V* s) { return select(kGreaterEqual, s[0], splat(0.0f), s[1], s[2]); });
+  }
+  void emitCnd(const Instr& in) {
+    perComponent(in, [&](const V* s) { return select(kGreater, s[0], splat(0.5f), s[1], s[2]); });
+  }
+  void emitFrc(const Instr& in) { perComponent(in, [&](const V* s) { return sub(s[0], round(s[0], 1)); }); }
+  void emitFloor(const Instr& in) { perComponent(in, [&](const V* s) { return round(s[0], 1); }); }
+  void emitAbs(const Instr& in) { perComponent(in, [&](const V* s) { return bitAnd(s[0], 0x7fffffffu); }); }
+  // D3D rcp(0) = +inf: 1 / x.
+  void emitRcp(const Instr& in) { perComponent(in, [&](const V* s) { return div(splat(1.0f), s[0]); }); }
+  // 1 / sqrt(|x|), both correctly rounded as in the interpreter.
+  void emitRsq(const Instr& in) {
+    perComponent(in, [&](const V* s) {
+      const V a = bitAnd(s[0], 0x7fffffffu);
+      V q = newV();
+      for (int h = 0; h < parts_; ++h) cc_.vsqrtps(q.p[h], a.p[h]);
+      return div(splat(1.0f), q);
+    });
+  }
+  // dp2add: s0.x*s1.x + s0.y*s1.y + s2.x; dp3/dp4 add the next products in order.
+  void emitDot(const Instr& in) {
+    const int n = in.op == Op::Dp4 ? 4 : in.op == Op::Dp3 ? 3 : 2;
+    V a[4], b[4];
+    for (int k = 0; k < n; ++k) a[k] = source(in, 0, k), b[k] = source(in, 1, k);
+    V r = add(mul(a[0], b[0]), mul(a[1], b[1]));
+    if (in.op == Op::Dp2Add) r = add(r, source(in, 2, 0));
+    for (int k = 2; k < n; ++k) r = add(r, mul(a[k], b[k]));
+    const V all[4] = {r, r, r, r};
+    store(in, all);
+  }
+  // Lanes with a masked component below zero leave laneMask.
+  void emitKill(const Instr& in) {
+    x86::Gp killed = cc_.newUInt32();
+    cc_.xor_(killed, killed);
+    const V zero = splat(0.0f);
+    for (int c = 0; c < 4; ++c) {
+      if (!(in.dst.mask >> c & 1)) continue;
+      const V v = source(in, 0, c);
+      for (int h = 0; h < parts_; ++h) {
+        x86::Gp bits = cc_.newUInt32();
+        if (wide_) {
+          x86::KReg k = cc_.newKw();
+          cc_.vcmpps(k, v.p[h], zero.p[h], imm(kLess));
+          cc_.kmovw(bits, k);
+        } else {
+          x86::Vec m = newVec();
+          cc_.vcmpps(m, v.p[h], zero.p[h], imm(kLess));
+          cc_.vmovmskps(bits, m);
+          if (h) cc_.shl(bits, 8);
+        }
+        cc_.or_(killed, bits);
+      }
+    }
+    cc_.not_(killed);
+    x86::Gp mask = load(offsetof(JitFrame, laneMask));
+    cc_.and_(x86::word_ptr(mask), killed.r16());
+  }
+
+  x86::Compiler& cc_;
+  const Program& program_;
+  const bool wide_;
+  const int parts_;
+  JitProgram& out_;
+  bool affine_ = false;  // the current instruction's lane sources use affine modifiers
+  x86::Gp frame_, temps_, inputs_, outputs_, constants_;
+};
+
+}  // namespace
+
+std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa) {
+  if (program.flowControl || program.code.empty()) return nullptr;
+  auto out = std::make_unique<JitProgram>();
+  out->isa = isa;
+  CodeHolder code;
+  code.init(runtime().environment());
+  FailOnError errors;
+  code.setErrorHandler(&errors);
+  x86::Compiler cc(&code);
+  Generator(cc, program, isa, *out).run();
+  if (errors.error != kErrorOk || cc.finalize() != kErrorOk || errors.error != kErrorOk) return nullptr;
+  if (runtime().add(&out->run, &code) != kErrorOk) return nullptr;
+  return out;
+}
+
+}  // namespace refx::exec::detail
