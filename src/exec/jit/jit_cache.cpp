@@ -134,7 +134,7 @@ void runJit(const JitProgram& jit, const Program& program, const ExecContext& ct
   f.program = &program;
   f.ctx = &ctx;
   f.regs = &regs;
-  if (ctx.constantCount < jit.constantsRead || !ctx.constants) {
+  if (jit.constantsRead > 0 && (ctx.constantCount < jit.constantsRead || !ctx.constants)) {
     // Constants the API did not set read as zero, as in the interpreter.
     thread_local std::vector<Vec4> padded;
     padded.assign(size_t(jit.constantsRead), Vec4(0, 0, 0, 0));

@@ -6,7 +6,11 @@
 // else calls the interpreter's routine for that one instruction.
 #include <asmjit/x86.h>
 
+#include <array>
 #include <cstddef>
+#include <map>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "exec/jit/jit.h"
@@ -112,8 +116,24 @@ class Generator {
     return true;
   }
 
+  // tex with one register's .xyzw as coordinates, all four components written, no
+  // modifier, coordinates and destination apart: the sampler reads and writes the
+  // registers in place (the interpreter's runTexInPlace).
+  bool sampledInPlace(const Instr& in) const {
+    const Src& s = in.src[0];
+    if (in.op != Op::Tex || in.dst.mask != 0xF || in.shift != 0 || in.saturate || in.clamp || in.quantize ||
+        in.dst.rel != RelMode::None || !isLaneFile(in.dst.file) || s.rel != RelMode::None ||
+        !isLaneFile(s.file) || s.swizzle != kSwzXYZW || s.mod != SrcMod::None)
+      return false;
+    return s.file != in.dst.file || s.index != in.dst.index;
+  }
+
   void emitInstruction(uint32_t index) {
     const Instr& in = program_.code[index];
+    if (sampledInPlace(in)) {
+      emitTexInPlace(index);
+      return;
+    }
     if (!inlined(in)) {
       emitCall(index);
       return;
@@ -158,11 +178,61 @@ class Generator {
 
   void emitCall(uint32_t index) {
     ++out_.calledInstructions;
+    forget();
     InvokeNode* call;
     cc_.invoke(&call, imm(reinterpret_cast<void*>(&callInstruction)),
                FuncSignatureT<void, JitFrame*, uint32_t>(CallConvId::kHost));
     call->setArg(0, frame_);
     call->setArg(1, imm(index));
+  }
+
+  // The binding's sample() called directly; an unbound sampler takes the
+  // interpreter's routine (which returns D3D's (0,0,0,1)).
+  void emitTexInPlace(uint32_t index) {
+    const Instr& in = program_.code[index];
+    use(in.src[0].file, in.src[0].index);
+    use(in.dst.file, in.dst.index);
+    ++out_.inlineInstructions;
+    forget();
+    Label unbound = cc_.newLabel(), done = cc_.newLabel();
+    x86::Gp ctx = load(offsetof(JitFrame, ctx));
+    x86::Gp count = cc_.newInt32();
+    cc_.mov(count, x86::dword_ptr(ctx, int32_t(offsetof(ExecContext, samplerCount))));
+    cc_.cmp(count, in.sampler);
+    cc_.jle(unbound);
+    x86::Gp binding = cc_.newIntPtr();
+    cc_.mov(binding, x86::ptr(ctx, int32_t(offsetof(ExecContext, samplers))));
+    const int32_t at = int32_t(in.sampler * sizeof(SamplerBinding));
+    x86::Gp fn = cc_.newIntPtr();
+    cc_.mov(fn, x86::ptr(binding, at + int32_t(offsetof(SamplerBinding, sample))));
+    cc_.test(fn, fn);
+    cc_.jz(unbound);
+    x86::Gp context = cc_.newIntPtr();
+    cc_.mov(context, x86::ptr(binding, at + int32_t(offsetof(SamplerBinding, context))));
+    // Lanes to produce: all four of every 2x2 quad with a live lane (quadLanes()).
+    x86::Gp lanes = cc_.newUInt32(), t = cc_.newUInt32();
+    x86::Gp mask = load(offsetof(JitFrame, laneMask));
+    cc_.movzx(lanes, x86::word_ptr(mask));
+    cc_.mov(t, lanes), cc_.shr(t, 1), cc_.or_(lanes, t);
+    cc_.mov(t, lanes), cc_.shr(t, 2), cc_.or_(lanes, t);
+    cc_.and_(lanes, 0x1111);
+    cc_.imul(lanes, lanes, 15);
+    x86::Gp coords = cc_.newIntPtr(), out = cc_.newIntPtr();
+    cc_.lea(coords, lane(in.src[0].file, in.src[0].index, 0, 0));
+    cc_.lea(out, lane(in.dst.file, in.dst.index, 0, 0));
+    InvokeNode* call;
+    cc_.invoke(&call, fn,
+               FuncSignatureT<void, const void*, uint8_t, const void*, uint16_t, void*>(CallConvId::kHost));
+    call->setArg(0, context);
+    call->setArg(1, imm(int(SampleMode::Implicit)));
+    call->setArg(2, coords);
+    call->setArg(3, lanes);
+    call->setArg(4, out);
+    cc_.jmp(done);
+    cc_.bind(unbound);
+    emitCall(index);
+    --out_.calledInstructions;
+    cc_.bind(done);
   }
 
   // ------------------------------------------------------------------ values
@@ -173,21 +243,43 @@ class Generator {
     for (int h = 0; h < parts_; ++h) v.p[h] = newVec();
     return v;
   }
-  V splatBits(uint32_t bits) {
-    V v;
-    v.p[0] = v.p[1] = newVec();
-    cc_.vbroadcastss(v.p[0], cc_.newDWordConst(ConstPoolScope::kLocal, bits));
+  // Values are never modified once computed, so an op on the same operands gives
+  // the same value: computed once (replicated results such as a dot product's, the
+  // same modifier on each component, constants) while no call intervenes.
+  using Key = std::array<uint32_t, 6>;
+  static uint32_t id(const V& v) { return v.p[0].id(); }
+  template <class F>
+  V memo(const Key& key, F make) {
+    auto it = values_.find(key);
+    if (it != values_.end()) return it->second;
+    const V v = make();
+    values_.emplace(key, v);
     return v;
+  }
+  // Calls may write any register, and values kept across them would be spilled.
+  void forget() {
+    values_.clear();
+    registers_.clear();
+  }
+  V splatBits(uint32_t bits) {
+    return memo({1, bits}, [&] {
+      V v;
+      v.p[0] = v.p[1] = newVec();
+      cc_.vbroadcastss(v.p[0], cc_.newDWordConst(ConstPoolScope::kLocal, bits));
+      return v;
+    });
   }
   V splat(float x) {
     uint32_t bits;
     std::memcpy(&bits, &x, sizeof bits);
     return splatBits(bits);
   }
-  V op2(InstId id, const V& a, const V& b) {
-    V r = newV();
-    for (int h = 0; h < parts_; ++h) cc_.emit(id, r.p[h], a.p[h], b.p[h]);
-    return r;
+  V op2(InstId inst, const V& a, const V& b) {
+    return memo({2, inst, id(a), id(b)}, [&] {
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) cc_.emit(inst, r.p[h], a.p[h], b.p[h]);
+      return r;
+    });
   }
   V add(const V& a, const V& b) { return op2(x86::Inst::kIdVaddps, a, b); }
   V sub(const V& a, const V& b) { return op2(x86::Inst::kIdVsubps, a, b); }
@@ -202,16 +294,28 @@ class Generator {
   // Rounding of roundps/rndscaleps: 1 = down (floor), 4 = the MXCSR mode; 8 = no
   // precision exception.
   V round(const V& a, int mode) {
-    V r = newV();
-    for (int h = 0; h < parts_; ++h) {
-      if (wide_) cc_.vrndscaleps(r.p[h], a.p[h], imm(mode | 8));
-      else cc_.vroundps(r.p[h], a.p[h], imm(mode | 8));
-    }
-    return r;
+    return memo({3, uint32_t(mode), id(a)}, [&] {
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) {
+        if (wide_) cc_.vrndscaleps(r.p[h], a.p[h], imm(mode | 8));
+        else cc_.vroundps(r.p[h], a.p[h], imm(mode | 8));
+      }
+      return r;
+    });
+  }
+  V sqrt(const V& a) {
+    return memo({4, id(a)}, [&] {
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) cc_.vsqrtps(r.p[h], a.p[h]);
+      return r;
+    });
   }
   // compare(a, b) ? t : f with a vcmpps predicate (ordered, NaN false).
   static constexpr int kLess = 0x01, kGreaterEqual = 0x0D, kGreater = 0x0E;
   V select(int predicate, const V& a, const V& b, const V& t, const V& f) {
+    return memo({5, uint32_t(predicate), id(a), id(b), id(t), id(f)}, [&] { return selectNew(predicate, a, b, t, f); });
+  }
+  V selectNew(int predicate, const V& a, const V& b, const V& t, const V& f) {
     V r = newV();
     for (int h = 0; h < parts_; ++h) {
       if (wide_) {
@@ -227,6 +331,25 @@ class Generator {
     return r;
   }
 
+  // A register component: the value last stored there by this code, else loaded.
+  V laneValue(RegFile f, int index, int c) {
+    const std::array<int, 3> key{int(f), index, c};
+    auto it = registers_.find(key);
+    if (it != registers_.end()) return it->second;
+    V v = newV();
+    if (wide_) {
+      // Two 32-byte loads: the interpreter's routines and the samplers store 32 bytes
+      // at a time, and one 64-byte load of such recent stores cannot be forwarded
+      // from the store buffer (a stall of many cycles).
+      cc_.vmovups(v.p[0].ymm(), lane(f, index, c, 0));
+      cc_.vinsertf32x8(v.p[0], v.p[0], lane(f, index, c, 1), imm(1));
+    } else {
+      for (int h = 0; h < parts_; ++h) cc_.vmovups(v.p[h], lane(f, index, c, h));
+    }
+    registers_.emplace(key, v);
+    return v;
+  }
+
   x86::Gp base(RegFile f) const { return f == RegFile::Temp ? temps_ : f == RegFile::Input ? inputs_ : outputs_; }
   x86::Mem lane(RegFile f, int index, int c, int h) const {
     return x86::ptr(base(f), index * kRegisterBytes + c * kComponentBytes + h * 32);
@@ -238,13 +361,13 @@ class Generator {
     const Src& s = in.src[i];
     const int comp = (s.swizzle >> (2 * c)) & 3;
     if (isLaneFile(s.file)) {
-      V v = newV();
-      for (int h = 0; h < parts_; ++h) cc_.vmovups(v.p[h], lane(s.file, s.index, comp, h));
+      V v = laneValue(s.file, s.index, comp);
       if (s.mod == SrcMod::None) return v;
       float k, o;
       if (affine_ && affineMod(s.mod, k, o)) {
-        // The prepared path: v * k + o (o = -0 adds nothing).
-        v = mul(v, splat(k));
+        // The prepared path: v * k + o (o = -0 adds nothing; so does * 1 before an
+        // add, which quiets a signalling NaN as the multiplication would).
+        if (k != 1.0f) v = mul(v, splat(k));
         return o == 0.0f ? v : add(v, splat(o));
       }
       return modify(v, s.mod);
@@ -257,9 +380,12 @@ class Generator {
     }
     // An API constant, read when the code runs.
     out_.constantsRead = std::max(out_.constantsRead, int(s.index) + 1);
-    V v;
-    v.p[0] = v.p[1] = newVec();
-    cc_.vbroadcastss(v.p[0], x86::dword_ptr(constants_, int(s.index) * int(sizeof(Vec4)) + comp * 4));
+    V v = memo({6, s.index, uint32_t(comp)}, [&] {
+      V b;
+      b.p[0] = b.p[1] = newVec();
+      cc_.vbroadcastss(b.p[0], x86::dword_ptr(constants_, int(s.index) * int(sizeof(Vec4)) + comp * 4));
+      return b;
+    });
     if (s.flags & kSrcClampUnit) v = min(splat(1.0f), max(splat(-1.0f), v));  // std::min(std::max(v, -1), 1)
     return modify(v, s.mod);
   }
@@ -297,6 +423,7 @@ class Generator {
       if (in.quantize)
         v = mul(round(mul(v, splat(std::ldexp(1.0f, in.quantize))), 4), splat(std::ldexp(1.0f, -in.quantize)));
       for (int h = 0; h < parts_; ++h) cc_.vmovups(lane(in.dst.file, in.dst.index, c, h), v.p[h]);
+      registers_[{int(in.dst.file), int(in.dst.index), c}] = v;
     }
   }
 
@@ -348,9 +475,7 @@ class Generator {
   void emitRsq(const Instr& in) {
     perComponent(in, [&](const V* s) {
       const V a = bitAnd(s[0], 0x7fffffffu);
-      V q = newV();
-      for (int h = 0; h < parts_; ++h) cc_.vsqrtps(q.p[h], a.p[h]);
-      return div(splat(1.0f), q);
+      return div(splat(1.0f), sqrt(a));
     });
   }
   // dp2add: s0.x*s1.x + s0.y*s1.y + s2.x; dp3/dp4 add the next products in order.
@@ -398,6 +523,8 @@ class Generator {
   const int parts_;
   JitProgram& out_;
   bool affine_ = false;  // the current instruction's lane sources use affine modifiers
+  std::map<Key, V> values_;                   // see memo()
+  std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
   x86::Gp frame_, temps_, inputs_, outputs_, constants_;
 };
 
@@ -411,6 +538,12 @@ std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa) {
   code.init(runtime().environment());
   FailOnError errors;
   code.setErrorHandler(&errors);
+  // REFX_JIT_LOG=1: the generated code of each compiled program on stderr.
+  FileLogger logger(stderr);
+  if (const char* log = std::getenv("REFX_JIT_LOG"); log && std::strcmp(log, "1") == 0) {
+    std::fprintf(stderr, "; %s\n", program.name.c_str());
+    code.setLogger(&logger);
+  }
   x86::Compiler cc(&code);
   Generator(cc, program, isa, *out).run();
   if (errors.error != kErrorOk || cc.finalize() != kErrorOk || errors.error != kErrorOk) return nullptr;
