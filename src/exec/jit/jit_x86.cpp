@@ -531,7 +531,7 @@ class Generator {
 }  // namespace
 
 std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa) {
-  if (program.flowControl || program.code.empty()) return nullptr;
+  if (program.flowControl) return nullptr;
   auto out = std::make_unique<JitProgram>();
   out->isa = isa;
   CodeHolder code;
