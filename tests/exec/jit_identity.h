@@ -4,6 +4,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -65,9 +66,10 @@ inline std::string compareFile(const char* name, const std::vector<LaneVec4>& a,
 }
 
 // Runs `program` over several batches (random values, full and partial lane masks)
-// on the interpreter and on native code for `isa`.
+// on the interpreter and on native code for `isa`. Samplers from `boundSamplers` on
+// are unbound (the odd ones without a binding, the even ones beyond samplerCount).
 inline Outcome compare(const Program& program, PrepareOptions::Isa isa, uint32_t seed, Ranges ranges = {},
-                       int registerFloor = 0) {
+                       int registerFloor = 0, int boundSamplers = kSamplerCount) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> value(ranges.lo, ranges.hi);
   std::vector<Vec4> constants(kConstBumpEnv + kConstBumpEnvCount);
@@ -78,12 +80,13 @@ inline Outcome compare(const Program& program, PrepareOptions::Isa isa, uint32_t
   for (auto& b : bools) b = rng() & 1;
   std::array<SamplerBinding, kSamplerCount> samplers{};
   for (int s = 0; s < kSamplerCount; ++s)
-    samplers[size_t(s)] = SamplerBinding{reinterpret_cast<const void*>(uintptr_t(s)), fakeSample};
+    samplers[size_t(s)] = SamplerBinding{reinterpret_cast<const void*>(uintptr_t(s)),
+                                         s < boundSamplers || s % 2 == 0 ? fakeSample : nullptr};
   ExecContext ctx;
   ctx.constants = constants.data();
   ctx.constantCount = int(constants.size());
   ctx.samplers = samplers.data();
-  ctx.samplerCount = kSamplerCount;
+  ctx.samplerCount = std::max(boundSamplers, 2);
   ctx.intConstants = ints.data();
   ctx.intConstantCount = 16;
   ctx.boolConstants = bools.data();

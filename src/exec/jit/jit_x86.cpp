@@ -104,7 +104,7 @@ class Generator {
       case Op::Mov: case Op::Add: case Op::Sub: case Op::Mul: case Op::Mad: case Op::Dp3:
       case Op::Dp4: case Op::Dp2Add: case Op::Min: case Op::Max: case Op::Slt: case Op::Sge:
       case Op::Lrp: case Op::Cmp: case Op::Cnd: case Op::Frc: case Op::Floor: case Op::Abs:
-      case Op::Rcp: case Op::Rsq: case Op::Kill: break;
+      case Op::Rcp: case Op::Rsq: case Op::Nrm: case Op::Kill: break;
       default: return false;
     }
     if (in.op != Op::Kill && (in.dst.rel != RelMode::None || !isLaneFile(in.dst.file))) return false;
@@ -116,22 +116,25 @@ class Generator {
     return true;
   }
 
-  // tex with one register's .xyzw as coordinates, all four components written, no
-  // modifier, coordinates and destination apart: the sampler reads and writes the
-  // registers in place (the interpreter's runTexInPlace).
-  bool sampledInPlace(const Instr& in) const {
-    const Src& s = in.src[0];
-    if (in.op != Op::Tex || in.dst.mask != 0xF || in.shift != 0 || in.saturate || in.clamp || in.quantize ||
-        in.dst.rel != RelMode::None || !isLaneFile(in.dst.file) || s.rel != RelMode::None ||
-        !isLaneFile(s.file) || s.swizzle != kSwzXYZW || s.mod != SrcMod::None)
-      return false;
-    return s.file != in.dst.file || s.index != in.dst.index;
+  static bool isTexture(Op op) {
+    return op == Op::Tex || op == Op::TexProj || op == Op::TexBias || op == Op::TexLod || op == Op::TexGrad;
+  }
+
+  // Texture lookups with plain operands: the binding's sample() called directly.
+  bool sampledDirectly(const Instr& in) const {
+    if (!isTexture(in.op) || in.dst.rel != RelMode::None || !isLaneFile(in.dst.file)) return false;
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      const Src& s = in.src[i];
+      if (s.rel != RelMode::None || !(isLaneFile(s.file) || s.file == RegFile::Const || s.file == RegFile::Imm))
+        return false;
+    }
+    return true;
   }
 
   void emitInstruction(uint32_t index) {
     const Instr& in = program_.code[index];
-    if (sampledInPlace(in)) {
-      emitTexInPlace(index);
+    if (sampledDirectly(in)) {
+      emitTex(index);
       return;
     }
     if (!inlined(in)) {
@@ -166,6 +169,7 @@ class Generator {
       case Op::Abs: emitAbs(in); break;
       case Op::Rcp: emitRcp(in); break;
       case Op::Rsq: emitRsq(in); break;
+      case Op::Nrm: emitNrm(in); break;
       case Op::Kill: emitKill(in); break;
       default: break;
     }
@@ -186,13 +190,27 @@ class Generator {
     call->setArg(1, imm(index));
   }
 
-  // The binding's sample() called directly; an unbound sampler takes the
-  // interpreter's routine (which returns D3D's (0,0,0,1)).
-  void emitTexInPlace(uint32_t index) {
+  // The binding's sample() called as the interpreter calls it: coordinates (and
+  // gradients) read in place when they are one register's .xyzw, else computed into a
+  // stack buffer (texldp divided by w first); the result written in place when all
+  // four components go unmodified to a register that is not a source, else through a
+  // buffer with the result modifiers. An unbound sampler takes the interpreter's
+  // routine (which returns D3D's (0,0,0,1)).
+  void emitTex(uint32_t index) {
     const Instr& in = program_.code[index];
-    use(in.src[0].file, in.src[0].index);
-    use(in.dst.file, in.dst.index);
     ++out_.inlineInstructions;
+    affine_ = false;  // the interpreter reads texture operands through applyMod
+    const Src& coord = in.src[0];
+    bool alias = false;
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      if (isLaneFile(in.src[i].file)) use(in.src[i].file, in.src[i].index);
+      alias |= in.src[i].file == in.dst.file && in.src[i].index == in.dst.index;
+    }
+    use(in.dst.file, in.dst.index);
+    const bool coordsInPlace = (in.op == Op::Tex || in.op == Op::TexBias || in.op == Op::TexLod) &&
+                               isLaneFile(coord.file) && coord.swizzle == kSwzXYZW && coord.mod == SrcMod::None;
+    const bool resultInPlace = in.dst.mask == 0xF && in.shift == 0 && !in.saturate && !in.clamp && !in.quantize &&
+                               !alias;
     forget();
     Label unbound = cc_.newLabel(), done = cc_.newLabel();
     x86::Gp ctx = load(offsetof(JitFrame, ctx));
@@ -207,6 +225,26 @@ class Generator {
     cc_.mov(fn, x86::ptr(binding, at + int32_t(offsetof(SamplerBinding, sample))));
     cc_.test(fn, fn);
     cc_.jz(unbound);
+
+    x86::Gp coords = cc_.newIntPtr(), out = cc_.newIntPtr();
+    if (coordsInPlace) {
+      cc_.lea(coords, lane(coord.file, coord.index, 0, 0));
+    } else {
+      const x86::Mem buffer = cc_.newStack(12 * kComponentBytes, 64);
+      V c[4];
+      for (int k = 0; k < 4; ++k) c[k] = source(in, 0, k);
+      if (in.op == Op::TexProj) {  // iw = 1 / w; xyz *= iw
+        const V iw = div(splat(1.0f), c[3]);
+        for (int k = 0; k < 3; ++k) c[k] = mul(c[k], iw);
+      }
+      for (int k = 0; k < 4; ++k) put(buffer, k, c[k]);
+      if (in.op == Op::TexGrad)
+        for (int k = 0; k < 4; ++k) put(buffer, 4 + k, source(in, 1, k)), put(buffer, 8 + k, source(in, 2, k));
+      cc_.lea(coords, buffer);
+    }
+    const x86::Mem result = cc_.newStack(4 * kComponentBytes, 64);
+    if (resultInPlace) cc_.lea(out, lane(in.dst.file, in.dst.index, 0, 0));
+    else cc_.lea(out, result);
     x86::Gp context = cc_.newIntPtr();
     cc_.mov(context, x86::ptr(binding, at + int32_t(offsetof(SamplerBinding, context))));
     // Lanes to produce: all four of every 2x2 quad with a live lane (quadLanes()).
@@ -217,22 +255,35 @@ class Generator {
     cc_.mov(t, lanes), cc_.shr(t, 2), cc_.or_(lanes, t);
     cc_.and_(lanes, 0x1111);
     cc_.imul(lanes, lanes, 15);
-    x86::Gp coords = cc_.newIntPtr(), out = cc_.newIntPtr();
-    cc_.lea(coords, lane(in.src[0].file, in.src[0].index, 0, 0));
-    cc_.lea(out, lane(in.dst.file, in.dst.index, 0, 0));
+    const SampleMode mode = in.op == Op::TexBias  ? SampleMode::Bias
+                            : in.op == Op::TexLod  ? SampleMode::Lod
+                            : in.op == Op::TexGrad ? SampleMode::Grad
+                                                   : SampleMode::Implicit;
     InvokeNode* call;
     cc_.invoke(&call, fn,
                FuncSignatureT<void, const void*, uint8_t, const void*, uint16_t, void*>(CallConvId::kHost));
     call->setArg(0, context);
-    call->setArg(1, imm(int(SampleMode::Implicit)));
+    call->setArg(1, imm(int(mode)));
     call->setArg(2, coords);
     call->setArg(3, lanes);
     call->setArg(4, out);
+    forget();
+    if (!resultInPlace) {
+      V r[4];
+      for (int c = 0; c < 4; ++c)
+        if (in.dst.mask >> c & 1) r[c] = loadHalves(result.cloneAdjusted(c * kComponentBytes));
+      store(in, r);
+    }
     cc_.jmp(done);
     cc_.bind(unbound);
     emitCall(index);
     --out_.calledInstructions;
     cc_.bind(done);
+    forget();  // values of one branch are not defined after the join
+  }
+
+  void put(const x86::Mem& buffer, int row, const V& v) {
+    for (int h = 0; h < parts_; ++h) cc_.vmovups(buffer.cloneAdjusted(row * kComponentBytes + h * 32), v.p[h]);
   }
 
   // ------------------------------------------------------------------ values
@@ -311,7 +362,7 @@ class Generator {
     });
   }
   // compare(a, b) ? t : f with a vcmpps predicate (ordered, NaN false).
-  static constexpr int kLess = 0x01, kGreaterEqual = 0x0D, kGreater = 0x0E;
+  static constexpr int kEqual = 0x00, kLess = 0x01, kGreaterEqual = 0x0D, kGreater = 0x0E;
   V select(int predicate, const V& a, const V& b, const V& t, const V& f) {
     return memo({5, uint32_t(predicate), id(a), id(b), id(t), id(f)}, [&] { return selectNew(predicate, a, b, t, f); });
   }
@@ -336,17 +387,22 @@ class Generator {
     const std::array<int, 3> key{int(f), index, c};
     auto it = registers_.find(key);
     if (it != registers_.end()) return it->second;
+    const V v = loadHalves(lane(f, index, c, 0));
+    registers_.emplace(key, v);
+    return v;
+  }
+
+  // 16 lanes from memory. AVX-512: two 32-byte loads, because the interpreter's
+  // routines and the samplers store 32 bytes at a time, and one 64-byte load of such
+  // recent stores cannot be forwarded from the store buffer (a stall of many cycles).
+  V loadHalves(const x86::Mem& at) {
     V v = newV();
     if (wide_) {
-      // Two 32-byte loads: the interpreter's routines and the samplers store 32 bytes
-      // at a time, and one 64-byte load of such recent stores cannot be forwarded
-      // from the store buffer (a stall of many cycles).
-      cc_.vmovups(v.p[0].ymm(), lane(f, index, c, 0));
-      cc_.vinsertf32x8(v.p[0], v.p[0], lane(f, index, c, 1), imm(1));
+      cc_.vmovups(v.p[0].ymm(), at);
+      cc_.vinsertf32x8(v.p[0], v.p[0], at.cloneAdjusted(32), imm(1));
     } else {
-      for (int h = 0; h < parts_; ++h) cc_.vmovups(v.p[h], lane(f, index, c, h));
+      for (int h = 0; h < parts_; ++h) cc_.vmovups(v.p[h], at.cloneAdjusted(h * 32));
     }
-    registers_.emplace(key, v);
     return v;
   }
 
@@ -488,6 +544,18 @@ class Generator {
     for (int k = 2; k < n; ++k) r = add(r, mul(a[k], b[k]));
     const V all[4] = {r, r, r, r};
     store(in, all);
+  }
+  // All four components scaled by 1 / |xyz| (x*x + y*y + z*z in that order); a
+  // zero vector is kept as it is.
+  void emitNrm(const Instr& in) {
+    const V x = source(in, 0, 0), y = source(in, 0, 1), z = source(in, 0, 2);
+    const V d = add(add(mul(x, x), mul(y, y)), mul(z, z));
+    const V one = splat(1.0f);
+    const V k = select(kEqual, d, splat(0.0f), one, div(one, sqrt(d)));
+    V r[4];
+    for (int c = 0; c < 4; ++c)
+      if (in.dst.mask >> c & 1) r[c] = mul(source(in, 0, c), k);
+    store(in, r);
   }
   // Lanes with a masked component below zero leave laneMask.
   void emitKill(const Instr& in) {
