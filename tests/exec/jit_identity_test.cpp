@@ -97,7 +97,7 @@ Program randomProgram(std::mt19937& rng) {
     in.dst.mask = uint8_t(1 + pick(15));
     for (Src& s : in.src) {
       s.file = kFiles[pick(int(std::size(kFiles)))];
-      s.index = uint16_t(s.file == RegFile::Imm ? pick(6) : s.file == RegFile::Output ? pick(2) : pick(4));
+      s.index = uint16_t(s.file == RegFile::Imm ? pick(7) : s.file == RegFile::Output ? pick(2) : pick(4));
       s.swizzle = pick(2) ? kSwzXYZW : uint8_t(rng());
       s.mod = pick(2) ? SrcMod::None : SrcMod(pick(int(SrcMod::AbsNeg) + 1));
       if (s.file == RegFile::Const && pick(3) == 0) s.flags = kSrcClampUnit;
@@ -166,8 +166,11 @@ TEST(JitSwitches, FlowControlIsLeftToTheInterpreter) {
 TEST(JitCache, CompilesOncePerContentAndReadsConstantsWhenRunning) {
   if (availableIsas().empty()) GTEST_SKIP() << "no AVX2 on this CPU";
   Program a = addProgram();
-  a.imm(Vec4(0.25f, 0, 0, 0));  // content no other test has
-  const Program b = a;          // same content, another object
+  // An instruction no other test has: r0.w = v0.z + imm0.y.
+  Src imm0y = a.imm(Vec4(0.25f, 0.5f, 0, 0));
+  imm0y.swizzle = kSwzYYYY;
+  a.emit(Op::Add, dst(RegFile::Temp, 0, 0x8), reg(RegFile::Input, 0, kSwzZZZZ), imm0y);
+  Program b = a;  // same content, another object
   std::vector<Vec4> constants(3, Vec4(0, 0, 0, 0));
   ExecContext ctx;
   ctx.constants = constants.data();
@@ -178,7 +181,7 @@ TEST(JitCache, CompilesOncePerContentAndReadsConstantsWhenRunning) {
   const ProgramBuildInfo first = prepare(a, ctx, ra);
   const ProgramBuildInfo second = prepare(b, ctx, rb);
   const JitCacheStats after = jitCacheStats();
-  EXPECT_EQ(first.instructions, 1);
+  EXPECT_EQ(first.instructions, 2);
   EXPECT_GT(first.compileMicroseconds, 0.0);
   EXPECT_EQ(second.compileMicroseconds, 0.0);
   EXPECT_EQ(after.compiled, before.compiled + 1);
@@ -192,6 +195,12 @@ TEST(JitCache, CompilesOncePerContentAndReadsConstantsWhenRunning) {
   ctx.constantCount = 2;
   execute(b, ctx, rb);
   EXPECT_EQ(rb.temps[0].c[0][7], 1.5f);
+  // New immediates are read by the same code too: v0.z + imm0.y = 2 + 0.75.
+  b.immediates[0] = Vec4(0, 0.75f, 0, 0);
+  for (int l = 0; l < kBatchLanes; ++l) rb.inputs[0].c[2][l] = 2.0f;
+  EXPECT_EQ(prepare(b, ctx, rb).compileMicroseconds, 0.0);
+  execute(b, ctx, rb);
+  EXPECT_EQ(rb.temps[0].c[3][7], 2.75f);
   EXPECT_EQ(jitCacheStats().compiled, after.compiled);
 }
 

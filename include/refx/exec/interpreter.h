@@ -89,15 +89,16 @@ struct ProgramBuildInfo {
 
 // Decodes `program` once for these registers: operands resolved to lane arrays,
 // constants and immediates expanded, common ops bound to specialised routines, or
-// native code compiled once per process for the program's content (shared by
-// every thread and draw; constants are read when the code runs).
+// native code compiled once per process for the program's instructions (shared by
+// every thread and draw; constants and immediates are read when the code runs, so
+// new values never recompile).
 // execute() then runs the decoded form for this program; it stays valid while the
 // registers are not resized and the program, constants and samplers are unchanged.
 // The results are bit-identical to the interpreter's.
 ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs,
                          const PrepareOptions& options = {});
 
-// Process-wide counters of the native code cache (programs by content and ISA).
+// Process-wide counters of the native code cache (programs by instructions and ISA).
 struct JitCacheStats {
   uint64_t compiled = 0;     // programs compiled to native code
   uint64_t unsupported = 0;  // programs left to the interpreter (flow control)

@@ -17,7 +17,8 @@ struct JitFrame {
   float* temps;    // regs.temps[0].c[0]: register n component c at + n*64 + c*16 floats
   float* inputs;
   float* outputs;
-  const Vec4* constants;  // covers JitProgram::constantsRead entries
+  const Vec4* constants;   // covers JitProgram::constantsRead entries
+  const Vec4* immediates;  // Program::immediates
   uint16_t* laneMask;     // regs.laneMask (kill clears bits)
   // For instructions run by the interpreter's routine:
   const Program* program;

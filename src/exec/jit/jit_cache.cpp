@@ -35,7 +35,9 @@ void put(std::string& key, const T& v) {
   key.append(reinterpret_cast<const char*>(&v), sizeof v);
 }
 
-// Everything that decides what the program computes (field by field: no padding).
+// Everything that decides the generated code (field by field: no padding). The
+// values of the immediates do not: the code reads them, as it reads constants, when
+// it runs; only their count matters.
 std::string contentKey(const Program& p, JitIsa isa) {
   std::string key;
   key.reserve(p.code.size() * 64 + p.immediates.size() * 16 + 32);
@@ -55,8 +57,6 @@ std::string contentKey(const Program& p, JitIsa isa) {
     put(key, in.sampler), put(key, in.cmp), put(key, in.quantize), put(key, in.target);
   }
   put(key, p.immediates.size());
-  for (const Vec4& v : p.immediates)
-    for (int c = 0; c < 4; ++c) put(key, v[c]);
   put(key, p.localConstants.size());
   for (int32_t l : p.localConstants) put(key, l);
   return key;
@@ -130,6 +130,7 @@ void runJit(const JitProgram& jit, const Program& program, const ExecContext& ct
   f.inputs = regs.inputs[0].c[0];
   f.outputs = regs.outputs[0].c[0];
   f.constants = ctx.constants;
+  f.immediates = program.immediates.data();
   f.laneMask = &regs.laneMask;
   f.program = &program;
   f.ctx = &ctx;

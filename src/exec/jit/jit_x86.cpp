@@ -86,6 +86,7 @@ class Generator {
     inputs_ = load(offsetof(JitFrame, inputs));
     outputs_ = load(offsetof(JitFrame, outputs));
     constants_ = load(offsetof(JitFrame, constants));
+    immediates_ = load(offsetof(JitFrame, immediates));
     for (size_t i = 0; i < program_.code.size(); ++i) emitInstruction(uint32_t(i));
     cc_.endFunc();
   }
@@ -430,18 +431,30 @@ class Generator {
     }
     const bool local = s.file == RegFile::Const && size_t(s.index) < program_.localConstants.size() &&
                        program_.localConstants[s.index] >= 0;
-    if (s.file == RegFile::Imm || local) {  // program content: the value is known now
-      const Vec4 v = uniformRegisterValue(s, s.index, ExecContext{}, program_);
-      return splat(applySourceModifier(v[comp], s.mod));
+    V v;
+    if (s.file == RegFile::Imm || local) {
+      // Immediates are read when the code runs too, so programs that differ only in
+      // them (fixed-function state: matrices, lights, colours) share one compiled form.
+      const int immediate = local ? program_.localConstants[s.index] : s.index;
+      if (size_t(immediate) >= program_.immediates.size()) {  // reads as zero
+        const Vec4 zero = uniformRegisterValue(s, s.index, ExecContext{}, program_);
+        return splat(applySourceModifier(zero[comp], s.mod));
+      }
+      v = memo({7, uint32_t(immediate), uint32_t(comp)}, [&] {
+        V b;
+        b.p[0] = b.p[1] = newVec();
+        cc_.vbroadcastss(b.p[0], x86::dword_ptr(immediates_, immediate * int(sizeof(Vec4)) + comp * 4));
+        return b;
+      });
+    } else {  // an API constant
+      out_.constantsRead = std::max(out_.constantsRead, int(s.index) + 1);
+      v = memo({6, s.index, uint32_t(comp)}, [&] {
+        V b;
+        b.p[0] = b.p[1] = newVec();
+        cc_.vbroadcastss(b.p[0], x86::dword_ptr(constants_, int(s.index) * int(sizeof(Vec4)) + comp * 4));
+        return b;
+      });
     }
-    // An API constant, read when the code runs.
-    out_.constantsRead = std::max(out_.constantsRead, int(s.index) + 1);
-    V v = memo({6, s.index, uint32_t(comp)}, [&] {
-      V b;
-      b.p[0] = b.p[1] = newVec();
-      cc_.vbroadcastss(b.p[0], x86::dword_ptr(constants_, int(s.index) * int(sizeof(Vec4)) + comp * 4));
-      return b;
-    });
     if (s.flags & kSrcClampUnit) v = min(splat(1.0f), max(splat(-1.0f), v));  // std::min(std::max(v, -1), 1)
     return modify(v, s.mod);
   }
@@ -593,7 +606,7 @@ class Generator {
   bool affine_ = false;  // the current instruction's lane sources use affine modifiers
   std::map<Key, V> values_;                   // see memo()
   std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
-  x86::Gp frame_, temps_, inputs_, outputs_, constants_;
+  x86::Gp frame_, temps_, inputs_, outputs_, constants_, immediates_;
 };
 
 }  // namespace
