@@ -45,6 +45,27 @@ inline bool sameBits(float a, float b) {
 struct Outcome {
   std::string backend;  // what ran the native side ("interpreter": not compiled)
   std::string mismatch;  // empty: identical
+  double compileMicroseconds = 0;  // 0: found in the cache
+};
+
+// Compile times of the programs a test compiled (cache hits left out).
+struct CompileTimes {
+  std::vector<double> us;
+  void add(const Outcome& o) {
+    if (o.compileMicroseconds > 0) us.push_back(o.compileMicroseconds);
+  }
+  std::string summary() const {
+    if (us.empty()) return "no program compiled";
+    std::vector<double> v = us;
+    std::sort(v.begin(), v.end());
+    double sum = 0;
+    for (double x : v) sum += x;
+    std::ostringstream s;
+    s.precision(3);
+    s << v.size() << " compiled, AsmJit compile time per program: median " << v[v.size() / 2] << " us, mean "
+      << sum / double(v.size()) << " us, max " << v.back() << " us";
+    return s.str();
+  }
 };
 
 struct Ranges {
@@ -104,7 +125,9 @@ inline Outcome compare(const Program& program, PrepareOptions::Isa isa, uint32_t
   PrepareOptions native;
   native.isa = isa;
   Outcome out;
-  out.backend = prepare(program, ctx, jit, native).backend;
+  const ProgramBuildInfo info = prepare(program, ctx, jit, native);
+  out.backend = info.backend;
+  out.compileMicroseconds = info.compileMicroseconds;
   const uint16_t masks[] = {0xffff, 0x0f0f, 0x8421, 0xfff0, 0x0001};
   for (uint16_t mask : masks) {
     auto fill = [&](std::vector<LaneVec4>& file) {

@@ -40,6 +40,7 @@ TEST(JitIdentity, EveryShaderFileThatLowers) {
   hardware.pixelShader1xMaxValue = 8.0f;
   const Lowering lowerings[] = {{"exact", {}}, {"hardware", hardware}};
   int files = 0, compiled = 0, interpreted = 0;
+  CompileTimes times;
   for (const fs::path& path : shaderFiles()) {
     std::ifstream f(path);
     std::stringstream text;
@@ -63,11 +64,13 @@ TEST(JitIdentity, EveryShaderFileThatLowers) {
         SCOPED_TRACE(path.string() + " (" + lowering.name + ", " + isaName(isa) + ")");
         EXPECT_EQ(o.mismatch, "");
         (o.backend == "interpreter" ? interpreted : compiled)++;
+        times.add(o);
       }
     }
   }
   std::printf("shader files: %d assembled; programs: %d compiled, %d left to the interpreter (flow control)\n",
               files, compiled, interpreted);
+  std::printf("shader files: %s\n", times.summary().c_str());
   EXPECT_GT(files, 60);
   EXPECT_GT(compiled, interpreted);
 }

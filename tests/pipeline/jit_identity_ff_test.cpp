@@ -17,11 +17,13 @@ namespace {
 
 struct Tally {
   int compiled = 0, interpreted = 0;
+  CompileTimes times;
   void check(const Program& p, const std::string& what, uint32_t seed, Ranges ranges) {
     for (auto isa : availableIsas()) {
       const Outcome o = compare(p, isa, seed, ranges, kPixelInputRegisters);
       EXPECT_EQ(o.mismatch, "") << what << " (" << isaName(isa) << ")\n" << listProgram(p);
       (o.backend == "interpreter" ? interpreted : compiled)++;
+      times.add(o);
     }
   }
 };
@@ -75,8 +77,8 @@ TEST(JitIdentityFixedFunction, PixelCascadeEveryTextureOp) {
         appendSpecularAndFog(p, s, true);
         tally.check(p, "D3DTOP " + std::to_string(op) + " at stage " + std::to_string(at), seed++, {0.0f, 1.0f});
       }
-  std::printf("fixed-function pixel programs: %d compiled, %d left to the interpreter\n", tally.compiled,
-              tally.interpreted);
+  std::printf("fixed-function pixel programs: %d compiled, %d left to the interpreter; %s\n", tally.compiled,
+              tally.interpreted, tally.times.summary().c_str());
   EXPECT_EQ(tally.interpreted, 0);
 }
 
@@ -106,8 +108,8 @@ TEST(JitIdentityFixedFunction, PixelFogAndSpecular) {
           appendSpecularAndFog(p, s, !shaderPath);
           tally.check(p, "fog table " + std::to_string(table), seed++, {0.0f, 1.0f});
         }
-  std::printf("fog/specular pixel programs: %d compiled, %d left to the interpreter\n", tally.compiled,
-              tally.interpreted);
+  std::printf("fog/specular pixel programs: %d compiled, %d left to the interpreter; %s\n", tally.compiled,
+              tally.interpreted, tally.times.summary().c_str());
   EXPECT_EQ(tally.interpreted, 0);
 }
 
@@ -171,8 +173,8 @@ TEST(JitIdentityFixedFunction, VertexLightingAndFog) {
           const Program p = buildFixedFunctionVertexProgram(s, fullVertex());
           tally.check(p, "light type " + std::to_string(type), seed++, {-2.0f, 2.0f});
         }
-  std::printf("fixed-function vertex programs (lighting, fog): %d compiled, %d left to the interpreter\n",
-              tally.compiled, tally.interpreted);
+  std::printf("fixed-function vertex programs (lighting, fog): %d compiled, %d left to the interpreter; %s\n",
+              tally.compiled, tally.interpreted, tally.times.summary().c_str());
 }
 
 TEST(JitIdentityFixedFunction, VertexTexgenTransformsAndBlending) {
@@ -221,8 +223,8 @@ TEST(JitIdentityFixedFunction, VertexTexgenTransformsAndBlending) {
       tally.check(p, "vertex blend " + std::to_string(b.mode), seed++, {-2.0f, 2.0f});
     }
   std::printf("fixed-function vertex programs (texgen, transforms, blending): %d compiled, %d left to the "
-              "interpreter\n",
-              tally.compiled, tally.interpreted);
+              "interpreter; %s\n",
+              tally.compiled, tally.interpreted, tally.times.summary().c_str());
 }
 
 }  // namespace

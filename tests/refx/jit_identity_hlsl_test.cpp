@@ -20,6 +20,7 @@ TEST(JitIdentityHlsl, EverySampleEntryPointAndProfile) {
   if (isas.empty()) GTEST_SKIP() << "no AVX2 on this CPU";
   const fs::path dir = fs::path(REFX_DATA_DIR) / "hlsl";
   int programs = 0, compiled = 0, interpreted = 0;
+  CompileTimes times;
   uint32_t seed = 1;
   for (const auto& e : fs::directory_iterator(dir)) {
     if (e.path().extension() != ".hlsl") continue;
@@ -50,12 +51,14 @@ TEST(JitIdentityHlsl, EverySampleEntryPointAndProfile) {
             const Outcome o = compare(low.program, isa, seed++, {-1.5f, 1.5f}, exec::kPixelInputRegisters);
             EXPECT_EQ(o.mismatch, "") << isaName(isa) << "\n" << exec::listProgram(low.program);
             (o.backend == "interpreter" ? interpreted : compiled)++;
+            times.add(o);
           }
         }
     }
   }
   std::printf("HLSL samples: %d programs; %d compiled, %d left to the interpreter\n", programs, compiled,
               interpreted);
+  std::printf("HLSL samples: %s\n", times.summary().c_str());
   EXPECT_GE(programs, 60);
 }
 
