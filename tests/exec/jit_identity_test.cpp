@@ -3,8 +3,10 @@
 // that choose what runs a program.
 #include "exec/jit_identity.h"
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
+#include <thread>
 #include <fstream>
 #include <sstream>
 
@@ -156,6 +158,37 @@ TEST(JitSwitches, EnvironmentAndOptionGiveTheInterpreter) {
   setenv("REFX_JIT_ISA", "avx2", 1);
   EXPECT_STREQ(prepare(p, ExecContext{}, r).backend, "jit-avx2");
   unsetenv("REFX_JIT_ISA");
+}
+
+TEST(JitSwitches, RegistersTheCodeWouldMissGiveTheInterpreter) {
+  if (availableIsas().empty()) GTEST_SKIP() << "no AVX2 on this CPU";
+  Program p = addProgram();
+  p.emit(Op::Mov, dst(RegFile::Output, 0), reg(RegFile::Input, 5));  // v5 beyond inputCount
+  p.outputCount = 1;
+  BatchRegisters r;
+  r.resize(p);  // one input register: v5 reads as zero in the interpreter
+  EXPECT_STREQ(prepare(p, ExecContext{}, r).backend, "interpreter");
+  r.inputs.resize(6);
+  EXPECT_STRNE(prepare(p, ExecContext{}, r).backend, "interpreter");
+}
+
+TEST(JitCache, ThreadsPreparingOneProgramCompileItOnce) {
+  if (availableIsas().empty()) GTEST_SKIP() << "no AVX2 on this CPU";
+  Program p = addProgram();
+  p.emit(Op::Mul, dst(RegFile::Temp, 0, 0x2), reg(RegFile::Temp, 0, kSwzWWWW), reg(RegFile::Input, 0));
+  const JitCacheStats before = jitCacheStats();
+  std::vector<std::thread> threads;
+  std::atomic<int> compiles{0};
+  for (int t = 0; t < 8; ++t)
+    threads.emplace_back([&] {
+      BatchRegisters r;
+      r.resize(p);
+      if (prepare(p, ExecContext{}, r).compileMicroseconds > 0) ++compiles;
+    });
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(compiles.load(), 1);
+  EXPECT_EQ(jitCacheStats().compiled, before.compiled + 1);
+  EXPECT_EQ(jitCacheStats().hits, before.hits + 7);
 }
 
 TEST(JitSwitches, FlowControlIsLeftToTheInterpreter) {
