@@ -946,6 +946,7 @@ struct PreparedProgram {
   const Instr* code = nullptr;
   size_t size = 0;
   std::shared_ptr<const detail::JitProgram> jit;  // native code (the steps are unused)
+  mutable detail::JitFrame frame{};               // its frame in the prepared registers
   std::vector<Step> steps;
   std::vector<LaneVec4> uniforms;  // constant and immediate operands, splat over the lanes
 };
@@ -1000,6 +1001,7 @@ ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRe
   pp->size = program.code.size();
   if (jit) {
     pp->jit = std::move(jit);
+    pp->frame = detail::jitFrame(program, regs);
     regs.prepared = std::move(pp);
     return info;
   }
@@ -1157,7 +1159,12 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
   const bool prepared = pp && pp->program == &program && pp->code == program.code.data() &&
                         pp->size == program.code.size();
   if (prepared && pp->jit) {
-    detail::runJit(*pp->jit, program, ctx, regs);
+    if (pp->frame.regs == &regs) {
+      detail::runJit(*pp->jit, pp->frame, ctx);
+    } else {  // a copy of the registers prepared
+      detail::JitFrame frame = detail::jitFrame(program, regs);
+      detail::runJit(*pp->jit, frame, ctx);
+    }
     return;
   }
   if (program.flowControl) {

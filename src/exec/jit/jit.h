@@ -48,8 +48,10 @@ std::shared_ptr<const JitProgram> jitProgram(const Program& program, JitIsa isa,
 // Code generation (jit_x86.cpp): null when the program is not supported.
 std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa);
 
+// The frame of `program` running in `regs` (ctx and constants are set by runJit).
+JitFrame jitFrame(const Program& program, BatchRegisters& regs);
 // Runs compiled code on one batch.
-void runJit(const JitProgram& jit, const Program& program, const ExecContext& ctx, BatchRegisters& regs);
+void runJit(const JitProgram& jit, JitFrame& frame, const ExecContext& ctx);
 
 // The interpreter's routines the generated code and the code generator share
 // (interpreter.cpp), so results stay bit-identical.

@@ -124,17 +124,21 @@ std::shared_ptr<const JitProgram> jitProgram(const Program& program, JitIsa isa,
   return jit;
 }
 
-void runJit(const JitProgram& jit, const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
-  JitFrame f;
+JitFrame jitFrame(const Program& program, BatchRegisters& regs) {
+  JitFrame f{};
   f.temps = regs.temps[0].c[0];
   f.inputs = regs.inputs[0].c[0];
   f.outputs = regs.outputs[0].c[0];
-  f.constants = ctx.constants;
   f.immediates = program.immediates.data();
   f.laneMask = &regs.laneMask;
   f.program = &program;
-  f.ctx = &ctx;
   f.regs = &regs;
+  return f;
+}
+
+void runJit(const JitProgram& jit, JitFrame& f, const ExecContext& ctx) {
+  f.ctx = &ctx;
+  f.constants = ctx.constants;
   if (jit.constantsRead > 0 && (ctx.constantCount < jit.constantsRead || !ctx.constants)) {
     // Constants the API did not set read as zero, as in the interpreter.
     thread_local std::vector<Vec4> padded;

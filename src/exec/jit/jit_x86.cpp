@@ -82,11 +82,17 @@ class Generator {
     if (wide_) fn->frame().setAvx512Enabled();
     frame_ = cc_.newIntPtr("frame");
     fn->setArg(0, frame_);
-    temps_ = load(offsetof(JitFrame, temps));
-    inputs_ = load(offsetof(JitFrame, inputs));
-    outputs_ = load(offsetof(JitFrame, outputs));
-    constants_ = load(offsetof(JitFrame, constants));
-    immediates_ = load(offsetof(JitFrame, immediates));
+    // Base pointers of the files the program names (loaded once, before any branch).
+    bool named[8] = {};
+    for (const Instr& in : program_.code) {
+      named[int(in.dst.file)] = true;
+      for (const Src& src : in.src) named[int(src.file)] = true;
+    }
+    if (named[int(RegFile::Temp)]) temps_ = load(offsetof(JitFrame, temps));
+    if (named[int(RegFile::Input)]) inputs_ = load(offsetof(JitFrame, inputs));
+    if (named[int(RegFile::Output)]) outputs_ = load(offsetof(JitFrame, outputs));
+    if (named[int(RegFile::Const)]) constants_ = load(offsetof(JitFrame, constants));
+    if (named[int(RegFile::Imm)] || named[int(RegFile::Const)]) immediates_ = load(offsetof(JitFrame, immediates));
     for (size_t i = 0; i < program_.code.size(); ++i) emitInstruction(uint32_t(i));
     cc_.endFunc();
   }
