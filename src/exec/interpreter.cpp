@@ -584,7 +584,10 @@ uint16_t condition(const Instr& in, const Program& program, const ExecContext& c
 
 // Programs with flow control: structured control on per-lane execution masks.
 // Loop counts and aL are uniform (int constants); conditions may vary per lane.
-void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+// With native code, straight-line blocks run as one call while every lane executes
+// (and the instruction budget covers the whole block).
+void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters& regs,
+                 const detail::JitProgram* jit = nullptr, detail::JitFrame* frame = nullptr) {
   enum class Kind : uint8_t { If, Loop, Call };
   struct Frame {
     Kind kind;
@@ -713,6 +716,15 @@ void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters&
         break;
       }
       default:
+        if (jit && exec == 0xffff) {
+          const detail::JitBlock& block = jit->blocks[size_t(pc)];
+          if (block.run && budget >= block.length) {
+            detail::runJit(*jit, block.run, *frame, ctx);
+            pc += block.length;
+            budget -= block.length - 1;  // the loop counts one
+            break;
+          }
+        }
         if (exec) executeInstr(in, program, ctx, regs);
         ++pc;
         break;
@@ -1159,12 +1171,14 @@ void execute(const Program& program, const ExecContext& ctx, BatchRegisters& reg
   const bool prepared = pp && pp->program == &program && pp->code == program.code.data() &&
                         pp->size == program.code.size();
   if (prepared && pp->jit) {
-    if (pp->frame.regs == &regs) {
-      detail::runJit(*pp->jit, pp->frame, ctx);
-    } else {  // a copy of the registers prepared
-      detail::JitFrame frame = detail::jitFrame(program, regs);
-      detail::runJit(*pp->jit, frame, ctx);
+    detail::JitFrame copy;
+    detail::JitFrame* frame = &pp->frame;
+    if (frame->regs != &regs) {  // a copy of the registers prepared
+      copy = detail::jitFrame(program, regs);
+      frame = &copy;
     }
+    if (program.flowControl) executeFlow(program, ctx, regs, pp->jit.get(), frame);
+    else detail::runJit(*pp->jit, pp->jit->run, *frame, ctx);
     return;
   }
   if (program.flowControl) {

@@ -143,6 +143,9 @@ inline Outcome compare(const Program& program, PrepareOptions::Isa isa, uint32_t
     std::string m = compareFile("o", ref.outputs, jit.outputs);
     if (m.empty()) m = compareFile("r", ref.temps, jit.temps);
     if (m.empty()) m = compareFile("v", ref.inputs, jit.inputs);
+    if (m.empty() && ref.executedInstructions != jit.executedInstructions)
+      m = "executed instructions: interpreter " + std::to_string(ref.executedInstructions) + ", jit " +
+          std::to_string(jit.executedInstructions);
     if (m.empty() && ref.laneMask != jit.laneMask) {
       std::ostringstream s;
       s << std::hex << "laneMask: interpreter " << ref.laneMask << ", jit " << jit.laneMask;

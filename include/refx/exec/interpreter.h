@@ -101,7 +101,7 @@ ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRe
 // Process-wide counters of the native code cache (programs by instructions and ISA).
 struct JitCacheStats {
   uint64_t compiled = 0;     // programs compiled to native code
-  uint64_t unsupported = 0;  // programs left to the interpreter (flow control)
+  uint64_t unsupported = 0;  // programs the code generator failed on (left to the interpreter)
   uint64_t hits = 0;         // prepare() calls that found their program compiled
   double compileMicroseconds = 0;  // total compile time
 };

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "refx/exec/interpreter.h"
 
@@ -28,8 +29,16 @@ struct JitFrame {
 
 using JitFunction = void (*)(JitFrame*);
 
+struct JitBlock {
+  JitFunction run = nullptr;  // null: no block starts here
+  int32_t length = 0;         // instructions it runs
+};
+
 struct JitProgram {
-  JitFunction run = nullptr;
+  JitFunction run = nullptr;  // the whole program (without flow control)
+  // Programs with flow control: by instruction index, the straight-line block that
+  // starts there, run by the interpreter's flow control while every lane executes.
+  std::vector<JitBlock> blocks;
   JitIsa isa = JitIsa::Avx2;
   // Inline code addresses registers up to these counts (1 + highest index) and
   // API constants below constantsRead.
@@ -50,8 +59,8 @@ std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa);
 
 // The frame of `program` running in `regs` (ctx and constants are set by runJit).
 JitFrame jitFrame(const Program& program, BatchRegisters& regs);
-// Runs compiled code on one batch.
-void runJit(const JitProgram& jit, JitFrame& frame, const ExecContext& ctx);
+// Runs compiled code (the program's, or one of its blocks) on one batch.
+void runJit(const JitProgram& jit, JitFunction fn, JitFrame& frame, const ExecContext& ctx);
 
 // The interpreter's routines the generated code and the code generator share
 // (interpreter.cpp), so results stay bit-identical.

@@ -136,7 +136,7 @@ JitFrame jitFrame(const Program& program, BatchRegisters& regs) {
   return f;
 }
 
-void runJit(const JitProgram& jit, JitFrame& f, const ExecContext& ctx) {
+void runJit(const JitProgram& jit, JitFunction fn, JitFrame& f, const ExecContext& ctx) {
   f.ctx = &ctx;
   f.constants = ctx.constants;
   if (jit.constantsRead > 0 && (ctx.constantCount < jit.constantsRead || !ctx.constants)) {
@@ -148,7 +148,7 @@ void runJit(const JitProgram& jit, JitFrame& f, const ExecContext& ctx) {
                 padded.begin());
     f.constants = padded.data();
   }
-  jit.run(&f);
+  fn(&f);
 }
 
 }  // namespace refx::exec::detail

@@ -72,8 +72,13 @@ struct V {
 
 class Generator {
  public:
-  Generator(x86::Compiler& cc, const Program& program, JitIsa isa, JitProgram& out)
-      : cc_(cc), program_(program), wide_(isa == JitIsa::Avx512), parts_(wide_ ? 1 : 2), out_(out) {}
+  // Instructions [begin, end) of `program`. `generic`: as the interpreter's
+  // reference routine runs them (programs with flow control), else as its prepared
+  // path does (they differ in how source modifiers round: applyMod or v * k + o).
+  Generator(x86::Compiler& cc, const Program& program, JitIsa isa, JitProgram& out, size_t begin, size_t end,
+            bool generic)
+      : cc_(cc), program_(program), wide_(isa == JitIsa::Avx512), parts_(wide_ ? 1 : 2), out_(out),
+        begin_(begin), end_(end), generic_(generic) {}
 
   void run() {
     FuncNode* fn = cc_.addFunc(FuncSignatureT<void, JitFrame*>(CallConvId::kHost));
@@ -84,7 +89,8 @@ class Generator {
     fn->setArg(0, frame_);
     // Base pointers of the files the program names (loaded once, before any branch).
     bool named[8] = {};
-    for (const Instr& in : program_.code) {
+    for (size_t i = begin_; i < end_; ++i) {
+      const Instr& in = program_.code[i];
       named[int(in.dst.file)] = true;
       for (const Src& src : in.src) named[int(src.file)] = true;
     }
@@ -93,7 +99,7 @@ class Generator {
     if (named[int(RegFile::Output)]) outputs_ = load(offsetof(JitFrame, outputs));
     if (named[int(RegFile::Const)]) constants_ = load(offsetof(JitFrame, constants));
     if (named[int(RegFile::Imm)] || named[int(RegFile::Const)]) immediates_ = load(offsetof(JitFrame, immediates));
-    for (size_t i = 0; i < program_.code.size(); ++i) emitInstruction(uint32_t(i));
+    for (size_t i = begin_; i < end_; ++i) emitInstruction(uint32_t(i));
     cc_.endFunc();
   }
 
@@ -149,7 +155,7 @@ class Generator {
       return;
     }
     ++out_.inlineInstructions;
-    affine_ = affineModifierOp(in.op);
+    affine_ = !generic_ && affineModifierOp(in.op);
     for (int i = 0; i < sourceCount(in.op); ++i) {
       const Src& s = in.src[i];
       float k, o;
@@ -609,6 +615,8 @@ class Generator {
   const bool wide_;
   const int parts_;
   JitProgram& out_;
+  const size_t begin_, end_;
+  const bool generic_;
   bool affine_ = false;  // the current instruction's lane sources use affine modifiers
   std::map<Key, V> values_;                   // see memo()
   std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
@@ -617,10 +625,12 @@ class Generator {
 
 }  // namespace
 
-std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa) {
-  if (program.flowControl) return nullptr;
-  auto out = std::make_unique<JitProgram>();
-  out->isa = isa;
+namespace {
+
+bool isFlow(Op op) { return op >= Op::If && op <= Op::Ret; }
+
+// One function for instructions [begin, end); null on failure.
+JitFunction compileRange(const Program& program, JitIsa isa, JitProgram& out, size_t begin, size_t end) {
   CodeHolder code;
   code.init(runtime().environment());
   FailOnError errors;
@@ -628,13 +638,42 @@ std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa) {
   // REFX_JIT_LOG=1: the generated code of each compiled program on stderr.
   FileLogger logger(stderr);
   if (const char* log = std::getenv("REFX_JIT_LOG"); log && std::strcmp(log, "1") == 0) {
-    std::fprintf(stderr, "; %s\n", program.name.c_str());
+    std::fprintf(stderr, "; %s [%zu, %zu)\n", program.name.c_str(), begin, end);
     code.setLogger(&logger);
   }
   x86::Compiler cc(&code);
-  Generator(cc, program, isa, *out).run();
+  Generator(cc, program, isa, out, begin, end, program.flowControl).run();
+  JitFunction fn = nullptr;
   if (errors.error != kErrorOk || cc.finalize() != kErrorOk || errors.error != kErrorOk) return nullptr;
-  if (runtime().add(&out->run, &code) != kErrorOk) return nullptr;
+  if (runtime().add(&fn, &code) != kErrorOk) return nullptr;
+  return fn;
+}
+
+}  // namespace
+
+std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa) {
+  auto out = std::make_unique<JitProgram>();
+  out->isa = isa;
+  if (!program.flowControl) {
+    out->run = compileRange(program, isa, *out, 0, program.code.size());
+    if (!out->run) return nullptr;
+    return out;
+  }
+  // Flow control stays with the interpreter; each run of straight-line instructions
+  // between flow-control instructions is one function it calls while every lane runs.
+  out->blocks.resize(program.code.size());
+  for (size_t b = 0; b < program.code.size();) {
+    if (isFlow(program.code[b].op)) {
+      ++b;
+      continue;
+    }
+    size_t e = b;
+    while (e < program.code.size() && !isFlow(program.code[e].op)) ++e;
+    out->blocks[b].run = compileRange(program, isa, *out, b, e);
+    if (!out->blocks[b].run) return nullptr;
+    out->blocks[b].length = int32_t(e - b);
+    b = e;
+  }
   return out;
 }
 
