@@ -32,7 +32,9 @@ struct Sample {
 std::vector<Sample> samples() {
   std::vector<Sample> out;
   std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(REFX_DATA_DIR) / "shaders"))
+  const std::filesystem::path dir = std::filesystem::path(REFX_DATA_DIR) / "shaders";
+  if (!std::filesystem::is_directory(dir)) return out;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
     if (e.path().extension() == ".psh" || e.path().extension() == ".vsh") files.push_back(e.path());
   std::sort(files.begin(), files.end());
   for (const auto& path : files) {
