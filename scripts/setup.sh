@@ -4,7 +4,7 @@
 set -eu
 PACKAGES="g++ cmake ninja-build ccache pkg-config libpng-dev zlib1g-dev libfmt-dev \
 libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev python3 \
-libmojoshader-dev"
+libmojoshader-dev libasmjit-dev"
 missing=""
 for p in $PACKAGES; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

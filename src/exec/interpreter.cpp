@@ -5,6 +5,8 @@
 #include <cstring>
 #include <limits>
 
+#include "exec/jit/jit.h"
+
 namespace refx::exec {
 
 namespace {
@@ -582,7 +584,10 @@ uint16_t condition(const Instr& in, const Program& program, const ExecContext& c
 
 // Programs with flow control: structured control on per-lane execution masks.
 // Loop counts and aL are uniform (int constants); conditions may vary per lane.
-void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+// With native code, straight-line blocks run as one call while every lane executes
+// (and the instruction budget covers the whole block).
+void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters& regs,
+                 const detail::JitProgram* jit = nullptr, detail::JitFrame* frame = nullptr) {
   enum class Kind : uint8_t { If, Loop, Call };
   struct Frame {
     Kind kind;
@@ -711,6 +716,15 @@ void executeFlow(const Program& program, const ExecContext& ctx, BatchRegisters&
         break;
       }
       default:
+        if (jit && exec == 0xffff) {
+          const detail::JitBlock& block = jit->blocks[size_t(pc)];
+          if (block.run && budget >= block.length) {
+            detail::runJit(*jit, block.run, *frame, ctx);
+            pc += block.length;
+            budget -= block.length - 1;  // the loop counts one
+            break;
+          }
+        }
         if (exec) executeInstr(in, program, ctx, regs);
         ++pc;
         break;
@@ -943,6 +957,8 @@ struct PreparedProgram {
   const Program* program = nullptr;
   const Instr* code = nullptr;
   size_t size = 0;
+  std::shared_ptr<const detail::JitProgram> jit;  // native code (the steps are unused)
+  mutable detail::JitFrame frame{};               // its frame in the prepared registers
   std::vector<Step> steps;
   std::vector<LaneVec4> uniforms;  // constant and immediate operands, splat over the lanes
 };
@@ -962,15 +978,45 @@ static bool affineMod(SrcMod m, float& scale, float& offset) {
   return false;
 }
 
-void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
-  if (program.flowControl) {  // runs on execution masks: decoded as it runs
+// Native code for `program` in these registers (null: the interpreter runs it).
+static std::shared_ptr<const detail::JitProgram> nativeCode(const Program& program,
+                                                           const BatchRegisters& regs,
+                                                           const PrepareOptions& options,
+                                                           ProgramBuildInfo& info) {
+  detail::JitIsa isa;
+  if (!options.jit || !detail::chooseJitIsa(options, isa)) return nullptr;
+  bool compiled = false;
+  auto jit = detail::jitProgram(program, isa, compiled);
+  if (!jit) return nullptr;
+  if (compiled) info.compileMicroseconds = jit->compileMicroseconds;
+  // Inline code reads registers without bounds checks: every register it addresses
+  // must exist (a missing one reads as zero in the interpreter).
+  if (int(regs.temps.size()) < jit->tempsUsed || int(regs.inputs.size()) < jit->inputsUsed ||
+      int(regs.outputs.size()) < jit->outputsUsed)
+    return nullptr;
+  info.backend = jit->isa == detail::JitIsa::Avx512 ? "jit-avx512" : "jit-avx2";
+  return jit;
+}
+
+ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs,
+                         const PrepareOptions& options) {
+  ProgramBuildInfo info;
+  info.instructions = int(program.code.size());
+  auto jit = nativeCode(program, regs, options, info);
+  if (!jit && program.flowControl) {  // runs on execution masks: decoded as it runs
     regs.prepared.reset();
-    return;
+    return info;
   }
   auto pp = std::make_shared<PreparedProgram>();
   pp->program = &program;
   pp->code = program.code.data();
   pp->size = program.code.size();
+  if (jit) {
+    pp->jit = std::move(jit);
+    pp->frame = detail::jitFrame(program, regs);
+    regs.prepared = std::move(pp);
+    return info;
+  }
   size_t uniformCount = 0;
   for (const Instr& in : program.code)
     for (int i = 0; i < kSources[uint8_t(in.op)]; ++i)
@@ -1117,20 +1163,48 @@ void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& reg
   // Every register ends with its four components, as without preparation.
   for (float* base : std::vector<float*>(narrow)) widen(base);
   regs.prepared = std::move(pp);
+  return info;
 }
 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  const PreparedProgram* pp = regs.prepared.get();
+  const bool prepared = pp && pp->program == &program && pp->code == program.code.data() &&
+                        pp->size == program.code.size();
+  if (prepared && pp->jit) {
+    detail::JitFrame copy;
+    detail::JitFrame* frame = &pp->frame;
+    if (frame->regs != &regs) {  // a copy of the registers prepared
+      copy = detail::jitFrame(program, regs);
+      frame = &copy;
+    }
+    if (program.flowControl) executeFlow(program, ctx, regs, pp->jit.get(), frame);
+    else detail::runJit(*pp->jit, pp->jit->run, *frame, ctx);
+    return;
+  }
   if (program.flowControl) {
     executeFlow(program, ctx, regs);
     return;
   }
-  const PreparedProgram* pp = regs.prepared.get();
-  if (pp && pp->program == &program && pp->code == program.code.data() &&
-      pp->size == program.code.size()) {
+  if (prepared) {
     for (const Step& s : pp->steps) s.run(s, ctx, regs);
     return;
   }
   for (const Instr& in : program.code) executeInstr(in, program, ctx, regs);
 }
+
+namespace detail {
+
+void executeInstruction(const Instr& in, const Program& program, const ExecContext& ctx,
+                        BatchRegisters& regs) {
+  executeInstr(in, program, ctx, regs);
+}
+
+float applySourceModifier(float x, SrcMod mod) { return applyMod(x, mod); }
+
+Vec4 uniformRegisterValue(const Src& s, int index, const ExecContext& ctx, const Program& p) {
+  return uniformValue(s, index, ctx, p);
+}
+
+}  // namespace detail
 
 }  // namespace refx::exec

@@ -67,11 +67,44 @@ constexpr long kMaxExecutedInstructions = 65535;
 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs);
 
+// How prepare() may run a program.
+struct PrepareOptions {
+  // Native code when the CPU allows it (AVX-512 or AVX2); false: the interpreter.
+  // The environment variable REFX_JIT=0 turns native code off whatever this says.
+  bool jit = true;
+  // Instruction set of the native code: Auto takes the best the CPU has (AVX-512
+  // with F/BW/DQ/VL, else AVX2 with FMA); REFX_JIT_ISA=avx2 in the environment makes
+  // Auto choose AVX2. A set the CPU lacks means the interpreter.
+  enum class Isa : uint8_t { Auto, Avx2, Avx512 } isa = Isa::Auto;
+};
+
+// What prepare() chose to run a program with.
+struct ProgramBuildInfo {
+  const char* backend = "interpreter";  // "jit-avx512", "jit-avx2" or "interpreter"
+  int instructions = 0;                 // the program's IR instructions
+  // Time this call spent compiling native code: 0 when the process-wide cache
+  // already held the program (or for the interpreter).
+  double compileMicroseconds = 0;
+};
+
 // Decodes `program` once for these registers: operands resolved to lane arrays,
-// constants and immediates expanded, common ops bound to specialised routines.
+// constants and immediates expanded, common ops bound to specialised routines, or
+// native code compiled once per process for the program's instructions (shared by
+// every thread and draw; constants and immediates are read when the code runs, so
+// new values never recompile).
 // execute() then runs the decoded form for this program; it stays valid while the
 // registers are not resized and the program, constants and samplers are unchanged.
-// The results are the same as without it.
-void prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs);
+// The results are bit-identical to the interpreter's.
+ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRegisters& regs,
+                         const PrepareOptions& options = {});
+
+// Process-wide counters of the native code cache (programs by instructions and ISA).
+struct JitCacheStats {
+  uint64_t compiled = 0;     // programs compiled to native code
+  uint64_t unsupported = 0;  // programs the code generator failed on (left to the interpreter)
+  uint64_t hits = 0;         // prepare() calls that found their program compiled
+  double compileMicroseconds = 0;  // total compile time
+};
+JitCacheStats jitCacheStats();
 
 }  // namespace refx::exec

@@ -1,0 +1,680 @@
+// Code generation for IR programs (x86-64, AsmJit's compiler): the 16 lanes of a
+// batch are one zmm register (AVX-512) or two ymm registers (AVX2). Registers stay in
+// memory between instructions, where the interpreter's routines find them: simple
+// ops are emitted inline with the interpreter's exact operation sequence (no fused
+// multiply-add: the interpreter is compiled with -ffp-contract=off), everything
+// else calls the interpreter's routine for that one instruction.
+#include <asmjit/x86.h>
+
+#include <array>
+#include <cstddef>
+#include <map>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "exec/jit/jit.h"
+
+namespace refx::exec::detail {
+
+namespace {
+
+using namespace asmjit;
+
+constexpr int kRegisterBytes = int(sizeof(LaneVec4));
+constexpr int kComponentBytes = kBatchLanes * int(sizeof(float));
+
+JitRuntime& runtime() {
+  static JitRuntime* rt = new JitRuntime;  // code lives as long as the process
+  return *rt;
+}
+
+struct FailOnError : ErrorHandler {
+  Error error = kErrorOk;
+  void handleError(Error err, const char*, BaseEmitter*) override { error = err; }
+};
+
+// Called by generated code: one instruction run by the interpreter.
+void callInstruction(JitFrame* f, uint32_t index) {
+  executeInstruction(f->program->code[index], *f->program, *f->ctx, *f->regs);
+}
+
+bool isLaneFile(RegFile f) { return f == RegFile::Temp || f == RegFile::Input || f == RegFile::Output; }
+
+// Ops the interpreter's prepared path runs with affine source modifiers (v * k + o);
+// the others read sources through applyMod.
+bool affineModifierOp(Op op) {
+  switch (op) {
+    case Op::Mov: case Op::Add: case Op::Sub: case Op::Mul: case Op::Mad: case Op::Min:
+    case Op::Max: case Op::Lrp: case Op::Cmp: case Op::Dp3: case Op::Dp4: return true;
+    default: return false;
+  }
+}
+
+bool affineMod(SrcMod m, float& scale, float& offset) {
+  static const struct { SrcMod m; float scale, offset; } kAffine[] = {
+      {SrcMod::Neg, -1, 0},     {SrcMod::Bias, 1, -0.5f}, {SrcMod::BiasNeg, -1, 0.5f},
+      {SrcMod::Sign, 2, -1},    {SrcMod::SignNeg, -2, 1}, {SrcMod::Comp, -1, 1},
+      {SrcMod::X2, 2, 0},       {SrcMod::X2Neg, -2, 0},
+  };
+  for (const auto& a : kAffine)
+    if (a.m == m) {
+      scale = a.scale, offset = a.offset;
+      return true;
+    }
+  return false;
+}
+
+// 16 lanes: one zmm, or two ymm (p[0] lanes 0..7, p[1] lanes 8..15).
+struct V {
+  x86::Vec p[2];
+};
+
+class Generator {
+ public:
+  // Instructions [begin, end) of `program`. `generic`: as the interpreter's
+  // reference routine runs them (programs with flow control), else as its prepared
+  // path does (they differ in how source modifiers round: applyMod or v * k + o).
+  Generator(x86::Compiler& cc, const Program& program, JitIsa isa, JitProgram& out, size_t begin, size_t end,
+            bool generic)
+      : cc_(cc), program_(program), wide_(isa == JitIsa::Avx512), parts_(wide_ ? 1 : 2), out_(out),
+        begin_(begin), end_(end), generic_(generic) {}
+
+  void run() {
+    FuncNode* fn = cc_.addFunc(FuncSignatureT<void, JitFrame*>(CallConvId::kHost));
+    fn->frame().setAvxEnabled();
+    fn->frame().setAvxCleanup();
+    if (wide_) fn->frame().setAvx512Enabled();
+    frame_ = cc_.newIntPtr("frame");
+    fn->setArg(0, frame_);
+    // Base pointers of the files the program names (loaded once, before any branch).
+    bool named[8] = {};
+    for (size_t i = begin_; i < end_; ++i) {
+      const Instr& in = program_.code[i];
+      named[int(in.dst.file)] = true;
+      for (const Src& src : in.src) named[int(src.file)] = true;
+    }
+    if (named[int(RegFile::Temp)]) temps_ = load(offsetof(JitFrame, temps));
+    if (named[int(RegFile::Input)]) inputs_ = load(offsetof(JitFrame, inputs));
+    if (named[int(RegFile::Output)]) outputs_ = load(offsetof(JitFrame, outputs));
+    if (named[int(RegFile::Const)]) constants_ = load(offsetof(JitFrame, constants));
+    if (named[int(RegFile::Imm)] || named[int(RegFile::Const)]) immediates_ = load(offsetof(JitFrame, immediates));
+    for (size_t i = begin_; i < end_; ++i) emitInstruction(uint32_t(i));
+    cc_.endFunc();
+  }
+
+ private:
+  x86::Gp load(size_t offset) {
+    x86::Gp r = cc_.newIntPtr();
+    cc_.mov(r, x86::ptr(frame_, int32_t(offset)));
+    return r;
+  }
+
+  // ------------------------------------------------------------------ selection
+
+  bool inlined(const Instr& in) const {
+    switch (in.op) {
+      case Op::Mov: case Op::Add: case Op::Sub: case Op::Mul: case Op::Mad: case Op::Dp3:
+      case Op::Dp4: case Op::Dp2Add: case Op::Min: case Op::Max: case Op::Slt: case Op::Sge:
+      case Op::Lrp: case Op::Cmp: case Op::Cnd: case Op::Frc: case Op::Floor: case Op::Abs:
+      case Op::Rcp: case Op::Rsq: case Op::Nrm: case Op::Kill: break;
+      default: return false;
+    }
+    if (in.op != Op::Kill && (in.dst.rel != RelMode::None || !isLaneFile(in.dst.file))) return false;
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      const Src& s = in.src[i];
+      if (s.rel != RelMode::None) return false;
+      if (!isLaneFile(s.file) && s.file != RegFile::Const && s.file != RegFile::Imm) return false;
+    }
+    return true;
+  }
+
+  static bool isTexture(Op op) {
+    return op == Op::Tex || op == Op::TexProj || op == Op::TexBias || op == Op::TexLod || op == Op::TexGrad;
+  }
+
+  // Texture lookups with plain operands: the binding's sample() called directly.
+  bool sampledDirectly(const Instr& in) const {
+    if (!isTexture(in.op) || in.dst.rel != RelMode::None || !isLaneFile(in.dst.file)) return false;
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      const Src& s = in.src[i];
+      if (s.rel != RelMode::None || !(isLaneFile(s.file) || s.file == RegFile::Const || s.file == RegFile::Imm))
+        return false;
+    }
+    return true;
+  }
+
+  void emitInstruction(uint32_t index) {
+    const Instr& in = program_.code[index];
+    if (sampledDirectly(in)) {
+      emitTex(index);
+      return;
+    }
+    if (!inlined(in)) {
+      emitCall(index);
+      return;
+    }
+    ++out_.inlineInstructions;
+    affine_ = !generic_ && affineModifierOp(in.op);
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      const Src& s = in.src[i];
+      float k, o;
+      if (isLaneFile(s.file) && s.mod != SrcMod::None && !affineMod(s.mod, k, o)) affine_ = false;
+      if (isLaneFile(s.file)) use(s.file, s.index);
+    }
+    if (in.op != Op::Kill) use(in.dst.file, in.dst.index);
+    switch (in.op) {
+      case Op::Mov: emitMov(in); break;
+      case Op::Add: emitAdd(in); break;
+      case Op::Sub: emitSub(in); break;
+      case Op::Mul: emitMul(in); break;
+      case Op::Mad: emitMad(in); break;
+      case Op::Dp3: case Op::Dp4: case Op::Dp2Add: emitDot(in); break;
+      case Op::Min: emitMin(in); break;
+      case Op::Max: emitMax(in); break;
+      case Op::Slt: emitSlt(in); break;
+      case Op::Sge: emitSge(in); break;
+      case Op::Lrp: emitLrp(in); break;
+      case Op::Cmp: emitCmp(in); break;
+      case Op::Cnd: emitCnd(in); break;
+      case Op::Frc: emitFrc(in); break;
+      case Op::Floor: emitFloor(in); break;
+      case Op::Abs: emitAbs(in); break;
+      case Op::Rcp: emitRcp(in); break;
+      case Op::Rsq: emitRsq(in); break;
+      case Op::Nrm: emitNrm(in); break;
+      case Op::Kill: emitKill(in); break;
+      default: break;
+    }
+  }
+
+  void use(RegFile f, int index) {
+    int& n = f == RegFile::Temp ? out_.tempsUsed : f == RegFile::Input ? out_.inputsUsed : out_.outputsUsed;
+    n = std::max(n, index + 1);
+  }
+
+  void emitCall(uint32_t index) {
+    ++out_.calledInstructions;
+    forget();
+    InvokeNode* call;
+    cc_.invoke(&call, imm(reinterpret_cast<void*>(&callInstruction)),
+               FuncSignatureT<void, JitFrame*, uint32_t>(CallConvId::kHost));
+    call->setArg(0, frame_);
+    call->setArg(1, imm(index));
+  }
+
+  // The binding's sample() called as the interpreter calls it: coordinates (and
+  // gradients) read in place when they are one register's .xyzw, else computed into a
+  // stack buffer (texldp divided by w first); the result written in place when all
+  // four components go unmodified to a register that is not a source, else through a
+  // buffer with the result modifiers. An unbound sampler takes the interpreter's
+  // routine (which returns D3D's (0,0,0,1)).
+  void emitTex(uint32_t index) {
+    const Instr& in = program_.code[index];
+    ++out_.inlineInstructions;
+    affine_ = false;  // the interpreter reads texture operands through applyMod
+    const Src& coord = in.src[0];
+    bool alias = false;
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      if (isLaneFile(in.src[i].file)) use(in.src[i].file, in.src[i].index);
+      alias |= in.src[i].file == in.dst.file && in.src[i].index == in.dst.index;
+    }
+    use(in.dst.file, in.dst.index);
+    const bool coordsInPlace = (in.op == Op::Tex || in.op == Op::TexBias || in.op == Op::TexLod) &&
+                               isLaneFile(coord.file) && coord.swizzle == kSwzXYZW && coord.mod == SrcMod::None;
+    const bool resultInPlace = in.dst.mask == 0xF && in.shift == 0 && !in.saturate && !in.clamp && !in.quantize &&
+                               !alias;
+    forget();
+    Label unbound = cc_.newLabel(), done = cc_.newLabel();
+    x86::Gp ctx = load(offsetof(JitFrame, ctx));
+    x86::Gp count = cc_.newInt32();
+    cc_.mov(count, x86::dword_ptr(ctx, int32_t(offsetof(ExecContext, samplerCount))));
+    cc_.cmp(count, in.sampler);
+    cc_.jle(unbound);
+    x86::Gp binding = cc_.newIntPtr();
+    cc_.mov(binding, x86::ptr(ctx, int32_t(offsetof(ExecContext, samplers))));
+    const int32_t at = int32_t(in.sampler * sizeof(SamplerBinding));
+    x86::Gp fn = cc_.newIntPtr();
+    cc_.mov(fn, x86::ptr(binding, at + int32_t(offsetof(SamplerBinding, sample))));
+    cc_.test(fn, fn);
+    cc_.jz(unbound);
+
+    x86::Gp coords = cc_.newIntPtr(), out = cc_.newIntPtr();
+    if (coordsInPlace) {
+      cc_.lea(coords, lane(coord.file, coord.index, 0, 0));
+    } else {
+      const x86::Mem buffer = cc_.newStack(12 * kComponentBytes, 64);
+      V c[4];
+      for (int k = 0; k < 4; ++k) c[k] = source(in, 0, k);
+      if (in.op == Op::TexProj) {  // iw = 1 / w; xyz *= iw
+        const V iw = div(splat(1.0f), c[3]);
+        for (int k = 0; k < 3; ++k) c[k] = mul(c[k], iw);
+      }
+      for (int k = 0; k < 4; ++k) put(buffer, k, c[k]);
+      if (in.op == Op::TexGrad)
+        for (int k = 0; k < 4; ++k) put(buffer, 4 + k, source(in, 1, k)), put(buffer, 8 + k, source(in, 2, k));
+      cc_.lea(coords, buffer);
+    }
+    const x86::Mem result = cc_.newStack(4 * kComponentBytes, 64);
+    if (resultInPlace) cc_.lea(out, lane(in.dst.file, in.dst.index, 0, 0));
+    else cc_.lea(out, result);
+    x86::Gp context = cc_.newIntPtr();
+    cc_.mov(context, x86::ptr(binding, at + int32_t(offsetof(SamplerBinding, context))));
+    // Lanes to produce: all four of every 2x2 quad with a live lane (quadLanes()).
+    x86::Gp lanes = cc_.newUInt32(), t = cc_.newUInt32();
+    x86::Gp mask = load(offsetof(JitFrame, laneMask));
+    cc_.movzx(lanes, x86::word_ptr(mask));
+    cc_.mov(t, lanes), cc_.shr(t, 1), cc_.or_(lanes, t);
+    cc_.mov(t, lanes), cc_.shr(t, 2), cc_.or_(lanes, t);
+    cc_.and_(lanes, 0x1111);
+    cc_.imul(lanes, lanes, 15);
+    const SampleMode mode = in.op == Op::TexBias  ? SampleMode::Bias
+                            : in.op == Op::TexLod  ? SampleMode::Lod
+                            : in.op == Op::TexGrad ? SampleMode::Grad
+                                                   : SampleMode::Implicit;
+    InvokeNode* call;
+    cc_.invoke(&call, fn,
+               FuncSignatureT<void, const void*, uint8_t, const void*, uint16_t, void*>(CallConvId::kHost));
+    call->setArg(0, context);
+    call->setArg(1, imm(int(mode)));
+    call->setArg(2, coords);
+    call->setArg(3, lanes);
+    call->setArg(4, out);
+    forget();
+    if (!resultInPlace) {
+      V r[4];
+      for (int c = 0; c < 4; ++c)
+        if (in.dst.mask >> c & 1) r[c] = loadHalves(result.cloneAdjusted(c * kComponentBytes));
+      store(in, r);
+    }
+    cc_.jmp(done);
+    cc_.bind(unbound);
+    emitCall(index);
+    --out_.calledInstructions;
+    cc_.bind(done);
+    forget();  // values of one branch are not defined after the join
+  }
+
+  void put(const x86::Mem& buffer, int row, const V& v) {
+    for (int h = 0; h < parts_; ++h) cc_.vmovups(buffer.cloneAdjusted(row * kComponentBytes + h * 32), v.p[h]);
+  }
+
+  // ------------------------------------------------------------------ values
+
+  x86::Vec newVec() { return wide_ ? x86::Vec(cc_.newZmmPs()) : x86::Vec(cc_.newYmmPs()); }
+  V newV() {
+    V v;
+    for (int h = 0; h < parts_; ++h) v.p[h] = newVec();
+    return v;
+  }
+  // Values are never modified once computed, so an op on the same operands gives
+  // the same value: computed once (replicated results such as a dot product's, the
+  // same modifier on each component, constants) while no call intervenes.
+  using Key = std::array<uint32_t, 6>;
+  static uint32_t id(const V& v) { return v.p[0].id(); }
+  template <class F>
+  V memo(const Key& key, F make) {
+    auto it = values_.find(key);
+    if (it != values_.end()) return it->second;
+    const V v = make();
+    values_.emplace(key, v);
+    return v;
+  }
+  // Calls may write any register, and values kept across them would be spilled.
+  void forget() {
+    values_.clear();
+    registers_.clear();
+  }
+  V splatBits(uint32_t bits) {
+    return memo({1, bits}, [&] {
+      V v;
+      v.p[0] = v.p[1] = newVec();
+      cc_.vbroadcastss(v.p[0], cc_.newDWordConst(ConstPoolScope::kLocal, bits));
+      return v;
+    });
+  }
+  V splat(float x) {
+    uint32_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    return splatBits(bits);
+  }
+  V op2(InstId inst, const V& a, const V& b) {
+    return memo({2, inst, id(a), id(b)}, [&] {
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) cc_.emit(inst, r.p[h], a.p[h], b.p[h]);
+      return r;
+    });
+  }
+  V add(const V& a, const V& b) { return op2(x86::Inst::kIdVaddps, a, b); }
+  V sub(const V& a, const V& b) { return op2(x86::Inst::kIdVsubps, a, b); }
+  V mul(const V& a, const V& b) { return op2(x86::Inst::kIdVmulps, a, b); }
+  V div(const V& a, const V& b) { return op2(x86::Inst::kIdVdivps, a, b); }
+  // a < b ? a : b and a > b ? a : b, as minps/maxps (NaN: b).
+  V min(const V& a, const V& b) { return op2(x86::Inst::kIdVminps, a, b); }
+  V max(const V& a, const V& b) { return op2(x86::Inst::kIdVmaxps, a, b); }
+  V bitAnd(const V& a, uint32_t bits) { return op2(x86::Inst::kIdVandps, a, splatBits(bits)); }
+  V bitOr(const V& a, uint32_t bits) { return op2(x86::Inst::kIdVorps, a, splatBits(bits)); }
+  V bitXor(const V& a, uint32_t bits) { return op2(x86::Inst::kIdVxorps, a, splatBits(bits)); }
+  // Rounding of roundps/rndscaleps: 1 = down (floor), 4 = the MXCSR mode; 8 = no
+  // precision exception.
+  V round(const V& a, int mode) {
+    return memo({3, uint32_t(mode), id(a)}, [&] {
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) {
+        if (wide_) cc_.vrndscaleps(r.p[h], a.p[h], imm(mode | 8));
+        else cc_.vroundps(r.p[h], a.p[h], imm(mode | 8));
+      }
+      return r;
+    });
+  }
+  V sqrt(const V& a) {
+    return memo({4, id(a)}, [&] {
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) cc_.vsqrtps(r.p[h], a.p[h]);
+      return r;
+    });
+  }
+  // compare(a, b) ? t : f with a vcmpps predicate (ordered, NaN false).
+  static constexpr int kEqual = 0x00, kLess = 0x01, kGreaterEqual = 0x0D, kGreater = 0x0E;
+  V select(int predicate, const V& a, const V& b, const V& t, const V& f) {
+    return memo({5, uint32_t(predicate), id(a), id(b), id(t), id(f)}, [&] { return selectNew(predicate, a, b, t, f); });
+  }
+  V selectNew(int predicate, const V& a, const V& b, const V& t, const V& f) {
+    V r = newV();
+    for (int h = 0; h < parts_; ++h) {
+      if (wide_) {
+        x86::KReg k = cc_.newKw();
+        cc_.vcmpps(k, a.p[h], b.p[h], imm(predicate));
+        cc_.k(k).vblendmps(r.p[h], f.p[h], t.p[h]);
+      } else {
+        x86::Vec m = newVec();
+        cc_.vcmpps(m, a.p[h], b.p[h], imm(predicate));
+        cc_.vblendvps(r.p[h], f.p[h], t.p[h], m);
+      }
+    }
+    return r;
+  }
+
+  // A register component: the value last stored there by this code, else loaded.
+  V laneValue(RegFile f, int index, int c) {
+    const std::array<int, 3> key{int(f), index, c};
+    auto it = registers_.find(key);
+    if (it != registers_.end()) return it->second;
+    const V v = loadHalves(lane(f, index, c, 0));
+    registers_.emplace(key, v);
+    return v;
+  }
+
+  // 16 lanes from memory. AVX-512: two 32-byte loads, because the interpreter's
+  // routines and the samplers store 32 bytes at a time, and one 64-byte load of such
+  // recent stores cannot be forwarded from the store buffer (a stall of many cycles).
+  V loadHalves(const x86::Mem& at) {
+    V v = newV();
+    if (wide_) {
+      cc_.vmovups(v.p[0].ymm(), at);
+      cc_.vinsertf32x8(v.p[0], v.p[0], at.cloneAdjusted(32), imm(1));
+    } else {
+      for (int h = 0; h < parts_; ++h) cc_.vmovups(v.p[h], at.cloneAdjusted(h * 32));
+    }
+    return v;
+  }
+
+  x86::Gp base(RegFile f) const { return f == RegFile::Temp ? temps_ : f == RegFile::Input ? inputs_ : outputs_; }
+  x86::Mem lane(RegFile f, int index, int c, int h) const {
+    return x86::ptr(base(f), index * kRegisterBytes + c * kComponentBytes + h * 32);
+  }
+
+  // Source i of `in`, component c: swizzle, unit clamp and modifier as the
+  // interpreter applies them.
+  V source(const Instr& in, int i, int c) {
+    const Src& s = in.src[i];
+    const int comp = (s.swizzle >> (2 * c)) & 3;
+    if (isLaneFile(s.file)) {
+      V v = laneValue(s.file, s.index, comp);
+      if (s.mod == SrcMod::None) return v;
+      float k, o;
+      if (affine_ && affineMod(s.mod, k, o)) {
+        // The prepared path: v * k + o (o = -0 adds nothing; so does * 1 before an
+        // add, which quiets a signalling NaN as the multiplication would).
+        if (k != 1.0f) v = mul(v, splat(k));
+        return o == 0.0f ? v : add(v, splat(o));
+      }
+      return modify(v, s.mod);
+    }
+    const bool local = s.file == RegFile::Const && size_t(s.index) < program_.localConstants.size() &&
+                       program_.localConstants[s.index] >= 0;
+    V v;
+    if (s.file == RegFile::Imm || local) {
+      // Immediates are read when the code runs too, so programs that differ only in
+      // them (fixed-function state: matrices, lights, colours) share one compiled form.
+      const int immediate = local ? program_.localConstants[s.index] : s.index;
+      if (size_t(immediate) >= program_.immediates.size()) {  // reads as zero
+        const Vec4 zero = uniformRegisterValue(s, s.index, ExecContext{}, program_);
+        return splat(applySourceModifier(zero[comp], s.mod));
+      }
+      v = memo({7, uint32_t(immediate), uint32_t(comp)}, [&] {
+        V b;
+        b.p[0] = b.p[1] = newVec();
+        cc_.vbroadcastss(b.p[0], x86::dword_ptr(immediates_, immediate * int(sizeof(Vec4)) + comp * 4));
+        return b;
+      });
+    } else {  // an API constant
+      out_.constantsRead = std::max(out_.constantsRead, int(s.index) + 1);
+      v = memo({6, s.index, uint32_t(comp)}, [&] {
+        V b;
+        b.p[0] = b.p[1] = newVec();
+        cc_.vbroadcastss(b.p[0], x86::dword_ptr(constants_, int(s.index) * int(sizeof(Vec4)) + comp * 4));
+        return b;
+      });
+    }
+    if (s.flags & kSrcClampUnit) v = min(splat(1.0f), max(splat(-1.0f), v));  // std::min(std::max(v, -1), 1)
+    return modify(v, s.mod);
+  }
+
+  // applyMod, lane by lane.
+  V modify(const V& v, SrcMod m) {
+    constexpr uint32_t kSign = 0x80000000u, kMagnitude = 0x7fffffffu;
+    switch (m) {
+      case SrcMod::None: return v;
+      case SrcMod::Neg: return bitXor(v, kSign);
+      case SrcMod::Bias: return sub(v, splat(0.5f));
+      case SrcMod::BiasNeg: return bitXor(sub(v, splat(0.5f)), kSign);
+      case SrcMod::Sign: return mul(splat(2.0f), sub(v, splat(0.5f)));
+      case SrcMod::SignNeg: return mul(splat(-2.0f), sub(v, splat(0.5f)));
+      case SrcMod::Comp: return sub(splat(1.0f), v);
+      case SrcMod::X2: return mul(splat(2.0f), v);
+      case SrcMod::X2Neg: return mul(splat(-2.0f), v);
+      case SrcMod::Abs: return bitAnd(v, kMagnitude);
+      case SrcMod::AbsNeg: return bitOr(v, kSign);
+    }
+    return v;
+  }
+
+  // Stores the written components with the result modifiers: shift, then saturate or
+  // clamp (vmin(vmax(r, lo), hi): NaN becomes lo), then the fixed-point grid. Every
+  // source is read before.
+  void store(const Instr& in, const V* r) {
+    const bool clamp = in.saturate || in.clamp;
+    for (int c = 0; c < 4; ++c) {
+      if (!(in.dst.mask >> c & 1)) continue;
+      V v = r[c];
+      if (in.shift != 0) v = mul(v, splat(std::ldexp(1.0f, in.shift)));
+      if (clamp) v = min(max(v, splat(in.saturate ? 0.0f : in.clampLo)), splat(in.saturate ? 1.0f : in.clampHi));
+      // Fixed point of `quantize` fractional bits: nearbyint(v * 2^q) * 2^-q.
+      if (in.quantize)
+        v = mul(round(mul(v, splat(std::ldexp(1.0f, in.quantize))), 4), splat(std::ldexp(1.0f, -in.quantize)));
+      for (int h = 0; h < parts_; ++h) cc_.vmovups(lane(in.dst.file, in.dst.index, c, h), v.p[h]);
+      registers_[{int(in.dst.file), int(in.dst.index), c}] = v;
+    }
+  }
+
+  // Per-component ops: f(sources of component c) for each written component.
+  template <class F>
+  void perComponent(const Instr& in, F f) {
+    const int n = sourceCount(in.op);
+    V r[4];
+    for (int c = 0; c < 4; ++c) {
+      if (!(in.dst.mask >> c & 1)) continue;
+      V s[3];
+      for (int i = 0; i < n; ++i) s[i] = source(in, i, c);
+      r[c] = f(s);
+    }
+    store(in, r);
+  }
+
+  // ------------------------------------------------------------------ one emitter per op
+
+  void emitMov(const Instr& in) { perComponent(in, [&](const V* s) { return s[0]; }); }
+  void emitAdd(const Instr& in) { perComponent(in, [&](const V* s) { return add(s[0], s[1]); }); }
+  void emitSub(const Instr& in) { perComponent(in, [&](const V* s) { return sub(s[0], s[1]); }); }
+  void emitMul(const Instr& in) { perComponent(in, [&](const V* s) { return mul(s[0], s[1]); }); }
+  void emitMad(const Instr& in) { perComponent(in, [&](const V* s) { return add(mul(s[0], s[1]), s[2]); }); }
+  void emitMin(const Instr& in) { perComponent(in, [&](const V* s) { return min(s[0], s[1]); }); }
+  void emitMax(const Instr& in) { perComponent(in, [&](const V* s) { return max(s[0], s[1]); }); }
+  void emitSlt(const Instr& in) {
+    perComponent(in, [&](const V* s) { return select(kLess, s[0], s[1], splat(1.0f), splat(0.0f)); });
+  }
+  void emitSge(const Instr& in) {
+    perComponent(in, [&](const V* s) { return select(kGreaterEqual, s[0], s[1], splat(1.0f), splat(0.0f)); });
+  }
+  // s0 * (s1 - s2) + s2
+  void emitLrp(const Instr& in) {
+    perComponent(in, [&](const V* s) { return add(mul(s[0], sub(s[1], s[2])), s[2]); });
+  }
+  void emitCmp(const Instr& in) {
+    perComponent(in, [&](const V* s) { return select(kGreaterEqual, s[0], splat(0.0f), s[1], s[2]); });
+  }
+  void emitCnd(const Instr& in) {
+    perComponent(in, [&](const V* s) { return select(kGreater, s[0], splat(0.5f), s[1], s[2]); });
+  }
+  void emitFrc(const Instr& in) { perComponent(in, [&](const V* s) { return sub(s[0], round(s[0], 1)); }); }
+  void emitFloor(const Instr& in) { perComponent(in, [&](const V* s) { return round(s[0], 1); }); }
+  void emitAbs(const Instr& in) { perComponent(in, [&](const V* s) { return bitAnd(s[0], 0x7fffffffu); }); }
+  // D3D rcp(0) = +inf: 1 / x.
+  void emitRcp(const Instr& in) { perComponent(in, [&](const V* s) { return div(splat(1.0f), s[0]); }); }
+  // 1 / sqrt(|x|), both correctly rounded as in the interpreter.
+  void emitRsq(const Instr& in) {
+    perComponent(in, [&](const V* s) {
+      const V a = bitAnd(s[0], 0x7fffffffu);
+      return div(splat(1.0f), sqrt(a));
+    });
+  }
+  // dp2add: s0.x*s1.x + s0.y*s1.y + s2.x; dp3/dp4 add the next products in order.
+  void emitDot(const Instr& in) {
+    const int n = in.op == Op::Dp4 ? 4 : in.op == Op::Dp3 ? 3 : 2;
+    V a[4], b[4];
+    for (int k = 0; k < n; ++k) a[k] = source(in, 0, k), b[k] = source(in, 1, k);
+    V r = add(mul(a[0], b[0]), mul(a[1], b[1]));
+    if (in.op == Op::Dp2Add) r = add(r, source(in, 2, 0));
+    for (int k = 2; k < n; ++k) r = add(r, mul(a[k], b[k]));
+    const V all[4] = {r, r, r, r};
+    store(in, all);
+  }
+  // All four components scaled by 1 / |xyz| (x*x + y*y + z*z in that order); a
+  // zero vector is kept as it is.
+  void emitNrm(const Instr& in) {
+    const V x = source(in, 0, 0), y = source(in, 0, 1), z = source(in, 0, 2);
+    const V d = add(add(mul(x, x), mul(y, y)), mul(z, z));
+    const V one = splat(1.0f);
+    const V k = select(kEqual, d, splat(0.0f), one, div(one, sqrt(d)));
+    V r[4];
+    for (int c = 0; c < 4; ++c)
+      if (in.dst.mask >> c & 1) r[c] = mul(source(in, 0, c), k);
+    store(in, r);
+  }
+  // Lanes with a masked component below zero leave laneMask.
+  void emitKill(const Instr& in) {
+    x86::Gp killed = cc_.newUInt32();
+    cc_.xor_(killed, killed);
+    const V zero = splat(0.0f);
+    for (int c = 0; c < 4; ++c) {
+      if (!(in.dst.mask >> c & 1)) continue;
+      const V v = source(in, 0, c);
+      for (int h = 0; h < parts_; ++h) {
+        x86::Gp bits = cc_.newUInt32();
+        if (wide_) {
+          x86::KReg k = cc_.newKw();
+          cc_.vcmpps(k, v.p[h], zero.p[h], imm(kLess));
+          cc_.kmovw(bits, k);
+        } else {
+          x86::Vec m = newVec();
+          cc_.vcmpps(m, v.p[h], zero.p[h], imm(kLess));
+          cc_.vmovmskps(bits, m);
+          if (h) cc_.shl(bits, 8);
+        }
+        cc_.or_(killed, bits);
+      }
+    }
+    cc_.not_(killed);
+    x86::Gp mask = load(offsetof(JitFrame, laneMask));
+    cc_.and_(x86::word_ptr(mask), killed.r16());
+  }
+
+  x86::Compiler& cc_;
+  const Program& program_;
+  const bool wide_;
+  const int parts_;
+  JitProgram& out_;
+  const size_t begin_, end_;
+  const bool generic_;
+  bool affine_ = false;  // the current instruction's lane sources use affine modifiers
+  std::map<Key, V> values_;                   // see memo()
+  std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
+  x86::Gp frame_, temps_, inputs_, outputs_, constants_, immediates_;
+};
+
+}  // namespace
+
+namespace {
+
+bool isFlow(Op op) { return op >= Op::If && op <= Op::Ret; }
+
+// One function for instructions [begin, end); null on failure.
+JitFunction compileRange(const Program& program, JitIsa isa, JitProgram& out, size_t begin, size_t end) {
+  CodeHolder code;
+  code.init(runtime().environment());
+  FailOnError errors;
+  code.setErrorHandler(&errors);
+  // REFX_JIT_LOG=1: the generated code of each compiled program on stderr.
+  FileLogger logger(stderr);
+  if (const char* log = std::getenv("REFX_JIT_LOG"); log && std::strcmp(log, "1") == 0) {
+    std::fprintf(stderr, "; %s [%zu, %zu)\n", program.name.c_str(), begin, end);
+    code.setLogger(&logger);
+  }
+  x86::Compiler cc(&code);
+  Generator(cc, program, isa, out, begin, end, program.flowControl).run();
+  JitFunction fn = nullptr;
+  if (errors.error != kErrorOk || cc.finalize() != kErrorOk || errors.error != kErrorOk) return nullptr;
+  if (runtime().add(&fn, &code) != kErrorOk) return nullptr;
+  return fn;
+}
+
+}  // namespace
+
+std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa) {
+  auto out = std::make_unique<JitProgram>();
+  out->isa = isa;
+  if (!program.flowControl) {
+    out->run = compileRange(program, isa, *out, 0, program.code.size());
+    if (!out->run) return nullptr;
+    return out;
+  }
+  // Flow control stays with the interpreter; each run of straight-line instructions
+  // between flow-control instructions is one function it calls while every lane runs.
+  out->blocks.resize(program.code.size());
+  for (size_t b = 0; b < program.code.size();) {
+    if (isFlow(program.code[b].op)) {
+      ++b;
+      continue;
+    }
+    size_t e = b;
+    while (e < program.code.size() && !isFlow(program.code[e].op)) ++e;
+    out->blocks[b].run = compileRange(program, isa, *out, b, e);
+    if (!out->blocks[b].run) return nullptr;
+    out->blocks[b].length = int32_t(e - b);
+    b = e;
+  }
+  return out;
+}
+
+}  // namespace refx::exec::detail
