@@ -391,6 +391,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   surfaces.depth = depth_.get();
   DrawPlanKey key = drawPlanKey(st, surfaces, *this);
   std::shared_ptr<const DrawPlan> plan = impl_->plans.find(key);
+  const bool newPlan = !plan;
   if (plan) {
     ++stats_.planCacheHits;
   } else {
@@ -399,14 +400,19 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     impl_->plans.insert(std::move(key), plan);
   }
 
-  const uint32_t vertexBoundStops =
-      runVertexStage(*plan, st, impl_->pool, vertices.lo, vertices.count, impl_->vertices);
+  exec::PrepareOptions prepareOptions;
+  prepareOptions.jit = options_.jit;
+  exec::ProgramBuildInfo vertexBuild, pixelBuild;
+  const uint32_t vertexBoundStops = runVertexStage(*plan, st, impl_->pool, vertices.lo,
+                                                   vertices.count, impl_->vertices, prepareOptions, vertexBuild);
   RasterDraw d;
   d.state = &st;
   PixelBindings pixelBindings;
   bindPixelStage(*plan, st, pixelBindings, d);
   bindOutputMerger(*plan, st, surfaces, d);
   d.pixelsShaded = &stats_.pixelsShaded;
+  d.prepareOptions = prepareOptions;
+  d.pixelBuild = &pixelBuild;
   std::atomic<uint32_t> pixelBoundStops{0};
   d.execContext.boundStops = &pixelBoundStops;
   setupPrimitives(*plan, st, caps_.maxPointSize, type, primitiveCount, vertices, impl_->vertices, d);
@@ -414,6 +420,13 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.fill = impl_->pendingClear;
   impl_->pendingClear = {};
   rasterize(d, impl_->pool);
+  if (newPlan) {  // what runs the new plan's programs (compile time 0: compiled before)
+    auto record = [&](const exec::Program& p, const exec::ProgramBuildInfo& b) {
+      stats_.programBuilds.push_back({p.name, b.instructions, b.compileMicroseconds, b.backend});
+    };
+    record(plan->vertexProgram(), vertexBuild);
+    if (d.pixelProgram) record(*d.pixelProgram, pixelBuild);
+  }
   for (const TexturePtr& t : targets_)
     if (t) t->markDirty();
   ++stats_.draws;

@@ -127,8 +127,11 @@ void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatc
 
 // Vertex fetch and processing of vertices lo .. lo + count - 1 into `verts`; returns the
 // batches a vertex shader's executed-instruction bound stopped.
+// `options` says how the program may run (native code or the interpreter); `build` gets
+// what ran it.
 uint32_t runVertexStage(const DrawPlan& plan, const DeviceState& st, ThreadPool& pool,
-                        uint32_t lo, uint32_t count, std::vector<ShadedVertex>& verts);
+                        uint32_t lo, uint32_t count, std::vector<ShadedVertex>& verts,
+                        const exec::PrepareOptions& options, exec::ProgramBuildInfo& build);
 
 // What the pixel stage binds for one draw (kept alive until the draw is rasterised).
 struct PixelBindings {

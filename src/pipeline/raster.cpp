@@ -281,7 +281,9 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
     if (draw.shaderDepth && int(w.regs.outputs.size()) <= exec::kPixelOutDepth)
       w.regs.outputs.resize(exec::kPixelOutDepth + 1);
     for (auto& in : w.regs.inputs) std::memset(&in, 0, sizeof(in));
-    exec::prepare(*draw.pixelProgram, draw.execContext, w.regs);
+    const exec::ProgramBuildInfo info =
+        exec::prepare(*draw.pixelProgram, draw.execContext, w.regs, draw.prepareOptions);
+    if (draw.pixelBuild && &w == &workers[0]) *draw.pixelBuild = info;
   }
   std::vector<uint64_t> shaded(threads, 0);
   pool.parallelFor(busy.size(), [&](size_t i, int thread) {

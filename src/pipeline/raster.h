@@ -113,6 +113,8 @@ struct RasterDraw {
   // planes, or wDepthOffset).
   float depthBias = 0, slopeScaleDepthBias = 0;
   uint64_t* pixelsShaded = nullptr;  // per-thread counters (array of threadCount)
+  exec::PrepareOptions prepareOptions;     // how the pixel program may run
+  exec::ProgramBuildInfo* pixelBuild = nullptr;  // gets what ran it (null: not wanted)
   // A Clear deferred to this draw: each tile is filled right before it is shaded
   // (tiles without primitives too), so the target is written once while in cache.
   struct Fill {

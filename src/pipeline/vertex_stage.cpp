@@ -36,7 +36,8 @@ DrawIndices gatherIndices(const void* indices, bool index32, uint32_t indexCount
 }
 
 uint32_t runVertexStage(const DrawPlan& plan, const DeviceState& st, ThreadPool& pool,
-                        uint32_t lo, uint32_t count, std::vector<ShadedVertex>& verts) {
+                        uint32_t lo, uint32_t count, std::vector<ShadedVertex>& verts,
+                        const exec::PrepareOptions& options, exec::ProgramBuildInfo& build) {
   StreamView streams[16];
   for (int s = 0; s < 16; ++s) {
     const StreamSource& src = st.streams[s];
@@ -89,7 +90,10 @@ uint32_t runVertexStage(const DrawPlan& plan, const DeviceState& st, ThreadPool&
   std::atomic<uint32_t> vertexBoundStops{0};
   vctx.boundStops = &vertexBoundStops;
   // The program is prepared for this draw's constants (once per worker's registers).
-  for (auto& r : vregs) exec::prepare(vprog, vctx, r);
+  for (size_t i = 0; i < vregs.size(); ++i) {
+    const exec::ProgramBuildInfo info = exec::prepare(vprog, vctx, vregs[i], options);
+    if (i == 0) build = info;
+  }
   pool.parallelFor(batches, [&](size_t b, int thread) {
     exec::BatchRegisters& r = vregs[thread];
     const uint32_t first = lo + uint32_t(b) * kBatchLanes;

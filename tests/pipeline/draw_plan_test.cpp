@@ -18,7 +18,9 @@
 // vertices.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <functional>
+#include <string>
 
 #include "device_helpers.h"
 #include "pipeline/draw_plan.h"
@@ -258,3 +260,32 @@ TEST(DrawPlanCache, BoundedLeastRecentlyUsed) {
 }
 
 }  // namespace
+
+// A new plan records what runs its two programs; a cached plan records nothing.
+// DeviceOptions::jit = false leaves both to the interpreter, with no compile time.
+TEST(DrawPlanCache, RecordsWhatRunsANewPlansPrograms) {
+  for (const bool jit : {true, false}) {
+    DeviceOptions options;
+    options.jit = jit;
+    Device dev(CapsProfile{}, options);
+    dev.setRenderTarget(Texture::create2D(Format::A8R8G8B8, 4, 4));
+    quad(dev, 0xffffffff);
+    quad(dev, 0xff00ff00);
+    const auto& builds = dev.stats().programBuilds;
+    ASSERT_EQ(builds.size(), 2u) << "jit " << jit;
+    EXPECT_EQ(builds[0].name, "ff_vertex_pretransformed");
+    EXPECT_EQ(builds[1].name, "fixed-function pixel");
+    for (const auto& b : builds) {
+      EXPECT_GT(b.instructions, 0) << b.name;
+      if (!jit) {
+        EXPECT_EQ(b.backend, "interpreter") << b.name;
+        EXPECT_EQ(b.microseconds, 0.0) << b.name;
+      } else {
+        // Native code where the CPU has AVX2 (any x86-64-v3 machine refx is built for)
+        // unless REFX_JIT=0 is set for the whole process.
+        const char* env = std::getenv("REFX_JIT");
+        if (!env || std::string(env) != "0") EXPECT_EQ(b.backend.rfind("jit-", 0), 0u) << b.backend;
+      }
+    }
+  }
+}
