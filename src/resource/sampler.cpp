@@ -1329,6 +1329,9 @@ struct PreparedPlan {
   Fast2D fast;
   bool needLambda;
   Kernel2D single = nullptr;  // no λ needed: kernel for level 0 (levels[0] set)
+  // sample2DUniform's common case in one step where the instruction set has it.
+  resource::Uniform2D uniform = nullptr;
+  resource::UniformPlan uniformPlan{};
 
   PreparedPlan(const Texture& tex, const SamplerState& state, const TextureAddress addr[3])
       : st(state), fast(tex, st, addr) {
@@ -1343,6 +1346,12 @@ struct PreparedPlan {
     needLambda =
         st.mipFilter != TextureFilter::None || isLinear(st.magFilter) != isLinear(st.minFilter);
     if (!needLambda && levels[0]) single = fast.kernels[isLinear(st.magFilter)];
+    if (needLambda && st.mipFilter != TextureFilter::Linear && st.mipLodBias == 0.0f &&
+        activeIsa() == CpuIsa::Avx512) {
+      uniform = resource::selectUniform2DAvx512(addr[0], addr[1]);
+      uniformPlan = {{fast.size[0], fast.size[1]}, fast.first, fast.last, fast.minLinear,
+                     fast.magLinear, fast.mipNone, levels.data()};
+    }
   }
 };
 
@@ -1373,7 +1382,8 @@ namespace {
     if (laneMask != 0xffff) clearLanes(out, laneMask);
     return true;
   }
-  return p->needLambda && derivatives && p->st.mipFilter != TextureFilter::Linear &&
+  if (!p->needLambda || !derivatives || p->st.mipFilter == TextureFilter::Linear) return false;
+  return (p->uniform && p->uniform(p->uniformPlan, c[0], c[1], laneMask, out)) ||
          sample2DUniform(p->fast, c, laneMask, out);
 }
 

@@ -29,7 +29,7 @@ typedef int v16i __attribute__((vector_size(64)));
 typedef uint32_t v16u __attribute__((vector_size(64)));
 typedef uint16_t v32h __attribute__((vector_size(64)));
 
-inline v16f splat(float f) { return v16f{} + f; }
+inline v16f splat(float f) { return v16f(_mm512_set1_ps(f)); }
 inline v16f toFloat(v16i i) { return __builtin_convertvector(i, v16f); }
 
 // vmaxps/vminps: x > lo ? x : lo (NaN -> lo), then x < hi ? x : hi.
@@ -197,10 +197,14 @@ inline v16f columnLerp(v32h top, v32h bottom, v16f wy) {
   return fmadd(fmadd(-q, splat(65280.0f), x), splat(kInv65280), q);
 }
 
-inline void store(float* p, v16f v) { std::memcpy(p, &v, sizeof v); }
+// Lanes outside `mask` store 0 (clearLanes of sampler.cpp).
+inline void store(float* p, v16f v, __mmask16 mask) {
+  _mm512_storeu_ps(p, _mm512_maskz_mov_ps(mask, __m512(v)));
+}
 
 template <TextureAddress AU, TextureAddress AV, bool Linear>
-void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out[4][kLanes]) {
+inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mmask16 mask,
+                     float out[4][kLanes]) {
   const int w = lv.width, h = lv.height;
   float loU, hiU, loV, hiV;
   positionRange(AU, w, loU, hiU);
@@ -212,7 +216,7 @@ void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out
   const v16i r0 = y0 * w;
   if constexpr (!Linear) {
     const v16u p = load16(texels, r0 + x0);
-    for (int ch = 0; ch < 4; ++ch) store(out[ch], byteOver255(channel(p, 8 * ch)));
+    for (int ch = 0; ch < 4; ++ch) store(out[ch], byteOver255(channel(p, 8 * ch)), mask);
   } else {
     const v16i r1 = y1 * w;
     v16u p00, p10, p01, p11;
@@ -234,10 +238,68 @@ void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out
     const v32h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
     const v32h bottomGA = rowLerp((p01 >> 8) & m, (p11 >> 8) & m, wx2);
     const v16f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
-    store(out[0], columnLerp<0>(topRB, bottomRB, fy));
-    store(out[1], columnLerp<0>(topGA, bottomGA, fy));
-    store(out[2], columnLerp<16>(topRB, bottomRB, fy));
-    store(out[3], columnLerp<16>(topGA, bottomGA, fy));
+    store(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
+    store(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
+    store(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
+    store(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
+  }
+}
+
+template <TextureAddress AU, TextureAddress AV, bool Linear>
+void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out[4][kLanes]) {
+  filter16<AU, AV, Linear>(lv, u, v, 0xffff, out);
+}
+
+// sample2DUniform's classification of the four quads at once (see there): ρ² of each
+// quad with the same operations in the same order, in all four lanes of its 128-bit
+// block; the exponent gives λ's side of 0 and the nearest level when the mantissa keeps
+// log2 away from an integer.
+template <TextureAddress AU, TextureAddress AV>
+bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t mask,
+               float out[4][kLanes]) {
+  v16f x, y;
+  std::memcpy(&x, u, sizeof x);
+  std::memcpy(&y, v, sizeof y);
+  // Lane 0 of each block is the quad's top-left: tr - tl and bl - tl in lanes 1 and 2.
+  const v16f du = (x - v16f(_mm512_shuffle_ps(__m512(x), __m512(x), 0x00))) * splat(plan.size[0]);
+  const v16f dv = (y - v16f(_mm512_shuffle_ps(__m512(y), __m512(y), 0x00))) * splat(plan.size[1]);
+  const v16f sq = du * du + dv * dv;
+  const v16f la = v16f(_mm512_shuffle_ps(__m512(sq), __m512(sq), 0x55));
+  const v16f lb = v16f(_mm512_shuffle_ps(__m512(sq), __m512(sq), 0xaa));
+  const v16f ms = la < lb ? lb : la;  // std::max(la, lb)
+  // Normal, positive and finite, mantissa in [0x1000, 0x7ff000): as two unsigned
+  // range checks, independent of each other.
+  const v16i bits = v16i(ms), mant = bits & 0x7fffff;
+  const __mmask16 normal = _mm512_cmplt_epu32_mask(__m512i(bits - 0x00800000),
+                                                   _mm512_set1_epi32(0x7f000000));
+  const __mmask16 inside = _mm512_cmplt_epu32_mask(__m512i(mant - 0x1000),
+                                                   _mm512_set1_epi32(0x7ff000 - 0x1000));
+  if (__mmask16(normal & inside) != 0xffff) return false;
+  const v16i e = v16i(v16u(bits) >> 23) - 127;
+  const v16i linear = e >= 0 ? v16i{} + plan.minLinear : v16i{} + plan.magLinear;
+  v16i level = (e + 1) >> 1;
+  level = level < plan.first ? v16i{} + plan.first : level;
+  level = level > plan.last ? v16i{} + plan.last : level;
+  if (plan.mipNone) level = v16i{};
+  const v16i k = (level << 1) | linear;
+  const int key = _mm_cvtsi128_si32(_mm512_castsi512_si128(__m512i(k)));
+  if (_mm512_cmpeq_epi32_mask(__m512i(k), _mm512_set1_epi32(key)) != 0xffff) return false;
+  const SampleLevel* lv = plan.levels[key >> 1];
+  if (!lv) return false;
+  if (key & 1)
+    filter16<AU, AV, true>(*lv, u, v, __mmask16(mask), out);
+  else
+    filter16<AU, AV, false>(*lv, u, v, __mmask16(mask), out);
+  return true;
+}
+
+template <TextureAddress AU>
+Uniform2D uniformForV(TextureAddress av) {
+  switch (av) {
+    case TextureAddress::Wrap: return uniform16<AU, TextureAddress::Wrap>;
+    case TextureAddress::Mirror: return uniform16<AU, TextureAddress::Mirror>;
+    case TextureAddress::MirrorOnce: return uniform16<AU, TextureAddress::MirrorOnce>;
+    default: return uniform16<AU, TextureAddress::Clamp>;
   }
 }
 
@@ -257,6 +319,15 @@ constexpr Kernel2D kernelForV(TextureAddress av, bool linear) {
 }
 
 }  // namespace
+
+Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av) {
+  switch (au) {
+    case TextureAddress::Wrap: return uniformForV<TextureAddress::Wrap>(av);
+    case TextureAddress::Mirror: return uniformForV<TextureAddress::Mirror>(av);
+    case TextureAddress::MirrorOnce: return uniformForV<TextureAddress::MirrorOnce>(av);
+    default: return uniformForV<TextureAddress::Clamp>(av);
+  }
+}
 
 Kernel2D selectKernel2DAvx512(TextureAddress au, TextureAddress av, bool linear) {
   switch (au) {

@@ -21,6 +21,23 @@ using Kernel2D = void (*)(const SampleLevel&, const float*, const float*,
 Kernel2D selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa);
 Kernel2D selectKernel2DAvx512(TextureAddress au, TextureAddress av, bool linear);
 
+// sample2DUniform of sampler.cpp for a prepared 2D texture (MIPFILTER NONE or POINT, λ
+// from quad derivatives, no LOD bias): what it needs of the texture and sampler state.
+struct UniformPlan {
+  float size[2];                    // level 0 width, height
+  int first, last;                  // MAXMIPLEVEL clamped, last level
+  int minLinear, magLinear;         // 1: LINEAR
+  bool mipNone;                     // MIPFILTER NONE: level 0
+  const SampleLevel* const* levels;  // per level, nullptr: not for the kernels
+};
+
+// Samples the batch when every quad's ρ² has the form that gives its level and filter
+// without a logarithm and all four quads agree on them, with the kernel of that level
+// and filter; lanes outside `mask` read 0. False: nothing written, the caller decides.
+using Uniform2D = bool (*)(const UniformPlan&, const float* u, const float* v, uint32_t mask,
+                           float out[4][kBatchLanes]);
+Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av);
+
 namespace kernels {
 
 // Sub-texel precision of filter weights (see the top of sampler.cpp).

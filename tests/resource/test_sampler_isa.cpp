@@ -137,7 +137,9 @@ TEST(SamplerIsaVariants, SamplingAgreesAcrossVariantsForEveryLaneMask) {
     ASSERT_EQ(std::memcmp(a, c, sizeof a), 0) << "mask " << mask;
     ASSERT_EQ(std::memcmp(a, d, sizeof a), 0) << "mask " << mask;
     for (int l = 0; l < N; ++l) {
-      if (!(mask >> l & 1)) ASSERT_EQ(a[0][l], 0.0f) << "mask " << mask << " lane " << l;
+      if (!(mask >> l & 1)) {
+        ASSERT_EQ(a[0][l], 0.0f) << "mask " << mask << " lane " << l;
+      }
     }
   }
   setActiveIsa(previous);
