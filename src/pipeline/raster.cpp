@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 #include "ff_pixel.h"
 #include "output_merger.h"
@@ -38,11 +41,17 @@ alignas(64) constexpr float kLaneYf[N] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2,
 
 constexpr int64_t kOne = int64_t(1) << kSubPixelBits;
 
+// Four int64 lanes (GCC/Clang vector extensions: vpaddq, vpcmpgtq).
+typedef int64_t v4l __attribute__((vector_size(32)));
+
 // A triangle's edge functions stepped from block to block: E at a block's top-left
 // pixel centre and the extremes over its 4x4 pixel centres relative to it.
 struct EdgeWalk {
   int64_t lo[3], hi[3];  // offsets of the block's minimum and maximum
   int64_t stepX[3];      // E(bx + 4) - E(bx)
+  // Triangles: E at each lane's pixel centre minus E at the block's top-left one, in
+  // lane order (four lanes to a v4l).
+  v4l laneOffset[3][N / 4];
 
   explicit EdgeWalk(const Primitive& p) {
     for (int k = 0; k < 3; ++k) {
@@ -50,6 +59,9 @@ struct EdgeWalk {
       lo[k] = std::min<int64_t>(ax, 0) + std::min<int64_t>(by3, 0);
       hi[k] = std::max<int64_t>(ax, 0) + std::max<int64_t>(by3, 0);
       stepX[k] = p.edgeA[k] * 4 * kOne;
+      if (p.kind != PrimKind::Triangle) continue;
+      for (int l = 0; l < N; ++l)
+        laneOffset[k][l / 4][l % 4] = p.edgeA[k] * kOne * kLaneX[l] + p.edgeB[k] * kOne * kLaneY[l];
     }
   }
   static void at(const Primitive& p, int bx, int by, int64_t e[3]) {
@@ -58,12 +70,24 @@ struct EdgeWalk {
   }
 };
 
+// Bit j set where lane j of m is all ones (m holds comparison results).
+inline uint32_t laneBits(v4l m) {
+#if defined(__AVX__)
+  __m256d d;
+  std::memcpy(&d, &m, sizeof d);
+  return uint32_t(_mm256_movemask_pd(d));  // the sign bits
+#else
+  uint32_t bits = 0;
+  for (int j = 0; j < 4; ++j) bits |= uint32_t(m[j] & 1) << j;
+  return bits;
+#endif
+}
+
 // Coverage of a 4x4 batch at (bx, by) by primitive p; for triangles e0 holds the
 // edge functions at (bx, by) (EdgeWalk::at).
 uint16_t coverage(const Primitive& p, const EdgeWalk& walk, const int64_t* e0, int bx, int by) {
   uint16_t mask = 0;
   if (p.kind == PrimKind::Triangle) {
-    constexpr int64_t one = kOne;
     bool inside = true;
     for (int k = 0; k < 3; ++k) {
       if (e0[k] + walk.hi[k] <= 0) return 0;  // whole block outside this edge
@@ -72,23 +96,15 @@ uint16_t coverage(const Primitive& p, const EdgeWalk& walk, const int64_t* e0, i
     if (inside) {
       mask = 0xffff;
     } else {
-      // Per lane, in doubles: every term is an integer below 2^53 (subpixel coordinates
-      // stay within the guard band), so the sums and their signs are exact.
-      typedef double v4d __attribute__((vector_size(32)));
-      typedef int64_t v4l __attribute__((vector_size(32)));
+      // Per lane, in int64: E(lane) = E(block) + the lane's offset, exact (every term is
+      // below 2^53: subpixel coordinates stay within the guard band).
       v4l in[4];
       for (int g = 0; g < 4; ++g) in[g] = v4l{} - 1;
       for (int k = 0; k < 3; ++k) {
-        const v4d e = v4d{} + double(e0[k]), a = v4d{} + double(p.edgeA[k] * one),
-                  b = v4d{} + double(p.edgeB[k] * one);
-        for (int g = 0; g < 4; ++g) {
-          v4d lx, ly;
-          for (int j = 0; j < 4; ++j) lx[j] = kLaneXf[4 * g + j], ly[j] = kLaneYf[4 * g + j];
-          in[g] &= (e + a * lx + b * ly) > 0.0;
-        }
+        const v4l e = v4l{} + e0[k];
+        for (int g = 0; g < 4; ++g) in[g] &= (e + walk.laneOffset[k][g]) > 0;
       }
-      for (int g = 0; g < 4; ++g)
-        for (int j = 0; j < 4; ++j) mask |= uint16_t(in[g][j] & 1) << (4 * g + j);
+      for (int g = 0; g < 4; ++g) mask |= uint16_t(laneBits(in[g]) << (4 * g));
     }
   } else if (p.kind == PrimKind::Line) {
     // One pixel per step along the major axis: the pixel whose centre is nearest

@@ -33,10 +33,13 @@
 #endif
 
 #include "resource/sampler_internal.h"
+#include "resource/sampler_kernels.h"
 
 namespace refx {
 
+using resource::Kernel2D;
 using resource::srgbToLinear;
+using namespace resource::kernels;
 
 namespace {
 
@@ -191,11 +194,6 @@ inline float clampFinite(float x, float lo, float hi) {
   return x < hi ? x : hi;
 }
 
-// Sub-texel precision of filter weights (see the top of the file).
-constexpr int kWeightBits = 8;
-constexpr float kWeightScale = float(1 << kWeightBits);
-constexpr float kWeightUnit = 1.0f / kWeightScale;
-
 // x rounded to the nearest multiple of 1/256, in units of 1/256: floor(x) = X >> 8 and
 // the weight of the next texel (level) (X & 255)/256. Rounds half to even, as the
 // vectorised kernel's vcvtps2dq does (both use the MXCSR mode, round-to-nearest).
@@ -256,10 +254,6 @@ TextureAddress validAddress(TextureAddress a) {
   return v >= 1 && v <= 5 ? a : TextureAddress::Wrap;
 }
 
-// Coordinates are limited to +-2^22 first (NaN goes to the low end): beyond that a
-// float has no fraction left, and it keeps every later step in int range.
-constexpr float kCoordLimit = 4194304.0f;
-
 inline float clampPosition(float x, float lo, float hi) { return clampFinite(x, lo, hi); }
 
 // floor(x) as an int, for |x| < 2^31 (the vectorised kernel computes it the same way).
@@ -276,18 +270,6 @@ inline float reduceCoord(TextureAddress a, float u) {
   if (a == TextureAddress::Wrap) return u - float(floorInt(u));
   if (a == TextureAddress::Mirror) return u - 2.0f * float(floorInt(u * 0.5f));
   return u;
-}
-
-// Texel-space positions are clamped to this range before conversion to int. It never
-// changes the texels of a finite coordinate and keeps indices small.
-inline void positionRange(TextureAddress a, int n, float& lo, float& hi) {
-  if (a == TextureAddress::Wrap) {
-    lo = -1.0f, hi = float(n);
-  } else if (a == TextureAddress::Mirror) {
-    lo = -1.0f, hi = float(2 * n);
-  } else {
-    lo = -float(n + 2), hi = float(n + 2);
-  }
 }
 
 // Texel index after addressing; -1 = outside the level (BORDER color).
@@ -700,7 +682,6 @@ inline v8f fmadd(v8f a, v8f b, v8f c) {
 // every one), without vdivps.
 inline v8f byteOver255(v8f b) {
 #if defined(__FMA__)
-  constexpr float kInv255 = 1.0f / 255.0f;
   const v8f q = b * kInv255;
   return fmadd(fmadd(-q, v8f{} + 255.0f, b), v8f{} + kInv255, q);
 #else
@@ -710,7 +691,6 @@ inline v8f byteOver255(v8f b) {
 
 // One channel from the low (shift 0) or high (shift 16) halves of two row results:
 // S/(255·65536) = (S/256)/65280, one correctly rounded division as in the reference.
-constexpr float kInv65280 = 1.0f / 65280.0f;
 
 template <int Shift>
 inline v8f columnLerp(v16h top, v16h bottom, v8f wy) {
@@ -790,8 +770,6 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
   }
 }
 
-using Kernel2D = void (*)(const SampleLevel&, const float*, const float*, float[4][kLanes]);
-
 template <TextureAddress AU, TextureAddress AV>
 constexpr Kernel2D kernelPair(bool linear) {
   return linear ? kernel2DFor<AU, AV, true> : kernel2DFor<AU, AV, false>;
@@ -808,13 +786,18 @@ constexpr Kernel2D kernelForV(TextureAddress av, bool linear) {
 }
 
 // The specialised kernel for an addressing pair (BORDER excluded: see fastLevel).
-Kernel2D selectKernel2D(TextureAddress au, TextureAddress av, bool linear) {
+Kernel2D selectKernel2DAvx2(TextureAddress au, TextureAddress av, bool linear) {
   switch (au) {
     case TextureAddress::Wrap: return kernelForV<TextureAddress::Wrap>(av, linear);
     case TextureAddress::Mirror: return kernelForV<TextureAddress::Mirror>(av, linear);
     case TextureAddress::MirrorOnce: return kernelForV<TextureAddress::MirrorOnce>(av, linear);
     default: return kernelForV<TextureAddress::Clamp>(av, linear);
   }
+}
+
+// The kernel in the variant of the active instruction set.
+Kernel2D selectKernel2D(TextureAddress au, TextureAddress av, bool linear) {
+  return resource::selectKernel2D(au, av, linear, activeIsa());
 }
 
 // One 2D level of packed rgba8 texels, all lanes.
@@ -1346,6 +1329,9 @@ struct PreparedPlan {
   Fast2D fast;
   bool needLambda;
   Kernel2D single = nullptr;  // no λ needed: kernel for level 0 (levels[0] set)
+  // sample2DUniform's common case in one step where the instruction set has it.
+  resource::Uniform2D uniform = nullptr;
+  resource::UniformPlan uniformPlan{};
 
   PreparedPlan(const Texture& tex, const SamplerState& state, const TextureAddress addr[3])
       : st(state), fast(tex, st, addr) {
@@ -1360,6 +1346,12 @@ struct PreparedPlan {
     needLambda =
         st.mipFilter != TextureFilter::None || isLinear(st.magFilter) != isLinear(st.minFilter);
     if (!needLambda && levels[0]) single = fast.kernels[isLinear(st.magFilter)];
+    if (needLambda && st.mipFilter != TextureFilter::Linear && st.mipLodBias == 0.0f &&
+        activeIsa() == CpuIsa::Avx512) {
+      uniform = resource::selectUniform2DAvx512(addr[0], addr[1]);
+      uniformPlan = {{fast.size[0], fast.size[1]}, fast.first, fast.last, fast.minLinear,
+                     fast.magLinear, fast.mipNone, levels.data()};
+    }
   }
 };
 
@@ -1390,7 +1382,8 @@ namespace {
     if (laneMask != 0xffff) clearLanes(out, laneMask);
     return true;
   }
-  return p->needLambda && derivatives && p->st.mipFilter != TextureFilter::Linear &&
+  if (!p->needLambda || !derivatives || p->st.mipFilter == TextureFilter::Linear) return false;
+  return (p->uniform && p->uniform(p->uniformPlan, c[0], c[1], laneMask, out)) ||
          sample2DUniform(p->fast, c, laneMask, out);
 }
 
@@ -1410,6 +1403,11 @@ void PreparedSampler::sampleImplicit(const float* u, const float* v, const float
   req.u = u, req.v = v, req.w = w;
   req.laneMask = laneMask;
   sampleImpl(*tex_, state_, req, out, true);
+}
+
+Kernel2D resource::selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa) {
+  return isa == CpuIsa::Avx512 ? selectKernel2DAvx512(au, av, linear)
+                               : selectKernel2DAvx2(au, av, linear);
 }
 
 void resource::sampleTextureReference(const Texture& tex, const SamplerState& state,

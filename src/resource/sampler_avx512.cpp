@@ -1,0 +1,343 @@
+// The AVX-512 variant of the 2D rgba8 kernels: kernel2DFor of sampler.cpp with the 16
+// lanes of a batch in one register instead of two halves, the same IEEE operations in
+// the same order (see the comments there for why each step is exact). Compiled with
+// AVX-512 flags (CMakeLists.txt: sources named *_avx512.cpp) and called only where the
+// CPU has them (selectKernel2D). Everything but the selector has internal linkage, so
+// no other translation unit can end up calling an AVX-512 copy of a shared function.
+// GCC 12's AVX-512 intrinsics warn about their own undefined pass-through operands.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#if !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+
+#include <cstdint>
+#include <cstring>
+
+#include "resource/sampler_kernels.h"
+
+namespace refx::resource {
+
+namespace {
+
+using namespace kernels;
+
+constexpr int kLanes = kBatchLanes;
+
+typedef float v16f __attribute__((vector_size(64)));
+typedef int v16i __attribute__((vector_size(64)));
+typedef uint32_t v16u __attribute__((vector_size(64)));
+typedef uint16_t v32h __attribute__((vector_size(64)));
+
+inline v16f splat(float f) { return v16f(_mm512_set1_ps(f)); }
+inline v16f toFloat(v16i i) { return __builtin_convertvector(i, v16f); }
+
+// vmaxps/vminps: x > lo ? x : lo (NaN -> lo), then x < hi ? x : hi.
+inline v16f clampPosition(v16f x, float lo, float hi) {
+  return v16f(_mm512_min_ps(_mm512_max_ps(__m512(x), _mm512_set1_ps(lo)), _mm512_set1_ps(hi)));
+}
+
+// float(floor(x)) (vrndscaleps toward -inf).
+inline v16f floorFloat(v16f x) {
+  return v16f(_mm512_roundscale_ps(__m512(x), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+}
+
+// Rounds to the nearest int by the MXCSR mode (vcvtps2dq).
+inline v16i roundInt(v16f x) { return v16i(_mm512_cvtps_epi32(__m512(x))); }
+
+inline v16f fmadd(v16f a, v16f b, v16f c) {
+  return v16f(_mm512_fmadd_ps(__m512(a), __m512(b), __m512(c)));
+}
+
+template <TextureAddress A>
+inline v16i addressLanes(v16i i, int n) {
+  const int p = 2 * n;
+  if constexpr (A == TextureAddress::Wrap) {
+    return i < 0 ? i + n : (i >= n ? i - n : i);
+  } else if constexpr (A == TextureAddress::Mirror) {
+    v16i m = i < 0 ? i + p : (i >= p ? i - p : i);
+    return m < n ? m : (p - 1) - m;
+  } else if constexpr (A == TextureAddress::MirrorOnce) {
+    v16i m = i < 0 ? -1 - i : i;
+    return m < n - 1 ? m : n - 1;
+  } else {  // Clamp
+    v16i m = i > 0 ? i : 0;
+    return m < n - 1 ? m : n - 1;
+  }
+}
+
+inline v16i minU32(v16i a, v16i b) {
+  const v16u ua = v16u(a), ub = v16u(b);
+  return v16i(ua < ub ? ua : ub);
+}
+inline v16i wrapLow(v16i i, int n) { return minU32(i, i + n); }   // i in [-1, n - 1]
+inline v16i wrapHigh(v16i i, int n) { return minU32(i, i - n); }  // i in [0, n]
+
+// One axis of all lanes (axis8 of sampler.cpp).
+template <TextureAddress A, bool Linear>
+inline void axis16(const float* c, float fn, float lo, float hi, int n, v16i& i0, v16i& i1,
+                   v16i& X) {
+  v16f u;
+  std::memcpy(&u, c, sizeof u);
+  u = clampPosition(u, -kCoordLimit, kCoordLimit);
+  if constexpr (A == TextureAddress::Wrap) u = u - floorFloat(u);
+  if constexpr (A == TextureAddress::Mirror) u = u - 2.0f * floorFloat(u * 0.5f);
+  if constexpr (Linear) {
+    v16f x = u * (fn * kWeightScale) - 0.5f * kWeightScale;
+    if constexpr (A != TextureAddress::Wrap)
+      x = clampPosition(x, lo * kWeightScale, hi * kWeightScale);
+    X = roundInt(x);
+    const v16i i = X >> kWeightBits;
+    if constexpr (A == TextureAddress::Wrap) {
+      i0 = wrapLow(i, n);
+      i1 = wrapHigh(i + 1, n);
+    } else {
+      i0 = addressLanes<A>(i, n);
+      i1 = addressLanes<A>(i + 1, n);
+    }
+  } else {
+    v16f x = u * fn;
+    if constexpr (A != TextureAddress::Wrap) x = clampPosition(x, lo, hi);
+    const v16i i = __builtin_convertvector(floorFloat(x), v16i);
+    if constexpr (A == TextureAddress::Wrap)
+      i0 = wrapHigh(i, n);
+    else
+      i0 = addressLanes<A>(i, n);
+  }
+}
+
+// Whether b - a = d in every lane.
+inline bool allDiffer(v16i a, v16i b, int d) {
+  return _mm512_cmpeq_epi32_mask(__m512i(b - a), _mm512_set1_epi32(d)) == 0xffff;
+}
+
+// Sixteen texels by index: scalar loads inserted four to a 128-bit block, the indices
+// read back from memory (load8 of sampler.cpp); faster than vpgatherdd on current cores.
+inline v16u load16(const uint32_t* texels, v16i a) {
+  alignas(64) int ix[16];
+  std::memcpy(ix, &a, sizeof ix);
+  asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
+  __m128i q[4];
+  for (int b = 0; b < 4; ++b) {
+    const int* i = ix + 4 * b;
+    q[b] = _mm_cvtsi32_si128(int(texels[i[0]]));
+    q[b] = _mm_insert_epi32(q[b], int(texels[i[1]]), 1);
+    q[b] = _mm_insert_epi32(q[b], int(texels[i[2]]), 2);
+    q[b] = _mm_insert_epi32(q[b], int(texels[i[3]]), 3);
+  }
+  const __m256i lo = _mm256_setr_m128i(q[0], q[1]), hi = _mm256_setr_m128i(q[2], q[3]);
+  return v16u(_mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1));
+}
+
+// Texels a[l] and a[l] + 1 of every lane: two 64-bit gathers of eight lanes each, then
+// the first and second texels picked from both.
+inline void loadPairs16(const uint32_t* texels, v16i a, v16u& first, v16u& second) {
+  const __m512i idx = __m512i(a);
+  const __m512i lo = _mm512_i32gather_epi64(_mm512_castsi512_si256(idx), texels, 4);
+  const __m512i hi = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(idx, 1), texels, 4);
+  const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  const __m512i odd = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+  first = v16u(_mm512_permutex2var_epi32(lo, even, hi));
+  second = v16u(_mm512_permutex2var_epi32(lo, odd, hi));
+}
+
+// Texel pairs a[l], a[l] + 1 (top row) and a[l] + w, a[l] + w + 1 (bottom row) of every
+// lane: scalar 64-bit loads, the indices read back from memory, then a transpose
+// (loadQuads8 of sampler.cpp, 16 lanes). Faster than four vpgatherdq on current cores.
+inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& p10, v16u& p01,
+                        v16u& p11) {
+  alignas(64) int ix[16];
+  std::memcpy(ix, &a, sizeof ix);
+  asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
+  __m128i q[16];
+  for (int l = 0; l < 16; ++l) {
+    const uint32_t* t = texels + ix[l];
+    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(t));
+    q[l] = _mm_castpd_si128(
+        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(t + w)));
+  }
+  // q[l] = t00 t10 t01 t11 of lane l. Lanes l, l + 4, l + 8, l + 12 share a register (one
+  // per 128-bit block), then a 4x4 transpose within each block gives the texel vectors.
+  __m512i r[4];
+  for (int l = 0; l < 4; ++l) {
+    const __m256i lo = _mm256_setr_m128i(q[l], q[l + 4]), hi = _mm256_setr_m128i(q[l + 8], q[l + 12]);
+    r[l] = _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+  }
+  const __m512i a01 = _mm512_unpacklo_epi32(r[0], r[1]), b01 = _mm512_unpackhi_epi32(r[0], r[1]);
+  const __m512i a23 = _mm512_unpacklo_epi32(r[2], r[3]), b23 = _mm512_unpackhi_epi32(r[2], r[3]);
+  p00 = v16u(_mm512_unpacklo_epi64(a01, a23));
+  p10 = v16u(_mm512_unpackhi_epi64(a01, a23));
+  p01 = v16u(_mm512_unpacklo_epi64(b01, b23));
+  p11 = v16u(_mm512_unpackhi_epi64(b01, b23));
+}
+
+inline v16f channel(v16u p, int shift) { return toFloat(v16i((p >> shift) & 255u)); }
+
+// b/255 for integer b in 0..255, correctly rounded (byteOver255 of sampler.cpp).
+inline v16f byteOver255(v16f b) {
+  const v16f q = b * kInv255;
+  return fmadd(fmadd(-q, splat(255.0f), b), splat(kInv255), q);
+}
+
+// Row lerp in 16-bit lanes, two channels per 32-bit lane (rowLerp of sampler.cpp).
+inline v32h rowLerp(v16u t0, v16u t1, v32h wx) {
+  const v32h a = v32h(t0), b = v32h(t1);
+  return (a << 8) + (b - a) * wx;
+}
+
+// One channel from the low (shift 0) or high (shift 16) halves of two row results,
+// divided by 65280 (columnLerp of sampler.cpp).
+template <int Shift>
+inline v16f columnLerp(v32h top, v32h bottom, v16f wy) {
+  const v16u mask = v16u{} + (Shift ? 0xffffffffu : 0xffffu);
+  const v16f t = toFloat(v16i((v16u(top) >> Shift) & mask));
+  const v16f b = toFloat(v16i((v16u(bottom) >> Shift) & mask));
+  const v16f x = fmadd(b - t, wy, t);
+  const v16f q = x * kInv65280;
+  return fmadd(fmadd(-q, splat(65280.0f), x), splat(kInv65280), q);
+}
+
+// Lanes outside `mask` store 0 (clearLanes of sampler.cpp).
+inline void store(float* p, v16f v, __mmask16 mask) {
+  _mm512_storeu_ps(p, _mm512_maskz_mov_ps(mask, __m512(v)));
+}
+
+template <TextureAddress AU, TextureAddress AV, bool Linear>
+inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mmask16 mask,
+                     float out[4][kLanes]) {
+  const int w = lv.width, h = lv.height;
+  float loU, hiU, loV, hiV;
+  positionRange(AU, w, loU, hiU);
+  positionRange(AV, h, loV, hiV);
+  const uint32_t* texels = lv.rgba8.data();
+  v16i x0, x1, y0, y1, fixedX, fixedY;
+  axis16<AU, Linear>(u, float(w), loU, hiU, w, x0, x1, fixedX);
+  axis16<AV, Linear>(v, float(h), loV, hiV, h, y0, y1, fixedY);
+  const v16i r0 = y0 * w;
+  if constexpr (!Linear) {
+    const v16u p = load16(texels, r0 + x0);
+    for (int ch = 0; ch < 4; ++ch) store(out[ch], byteOver255(channel(p, 8 * ch)), mask);
+  } else {
+    const v16i r1 = y1 * w;
+    v16u p00, p10, p01, p11;
+    const bool pairs = allDiffer(x0, x1, 1);
+    if (pairs && allDiffer(r0, r1, w)) {  // the 2x2 texels are a block in memory
+      loadQuads16(texels, r0 + x0, w, p00, p10, p01, p11);
+    } else if (!pairs) {
+      p00 = load16(texels, r0 + x0), p10 = load16(texels, r0 + x1);
+      p01 = load16(texels, r1 + x0), p11 = load16(texels, r1 + x1);
+    } else {
+      loadPairs16(texels, r0 + x0, p00, p10);
+      loadPairs16(texels, r1 + x0, p01, p11);
+    }
+    const v16u m = v16u{} + 0x00ff00ffu;
+    const v16u wx = v16u(fixedX) & 255u;
+    const v32h wx2 = v32h(wx | (wx << 16));
+    const v32h topRB = rowLerp(p00 & m, p10 & m, wx2);
+    const v32h topGA = rowLerp((p00 >> 8) & m, (p10 >> 8) & m, wx2);
+    const v32h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
+    const v32h bottomGA = rowLerp((p01 >> 8) & m, (p11 >> 8) & m, wx2);
+    const v16f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
+    store(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
+    store(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
+    store(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
+    store(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
+  }
+}
+
+template <TextureAddress AU, TextureAddress AV, bool Linear>
+void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out[4][kLanes]) {
+  filter16<AU, AV, Linear>(lv, u, v, 0xffff, out);
+}
+
+// sample2DUniform's classification of the four quads at once (see there): ρ² of each
+// quad with the same operations in the same order, in all four lanes of its 128-bit
+// block; the exponent gives λ's side of 0 and the nearest level when the mantissa keeps
+// log2 away from an integer.
+template <TextureAddress AU, TextureAddress AV>
+bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t mask,
+               float out[4][kLanes]) {
+  v16f x, y;
+  std::memcpy(&x, u, sizeof x);
+  std::memcpy(&y, v, sizeof y);
+  // Lane 0 of each block is the quad's top-left: tr - tl and bl - tl in lanes 1 and 2.
+  const v16f du = (x - v16f(_mm512_shuffle_ps(__m512(x), __m512(x), 0x00))) * splat(plan.size[0]);
+  const v16f dv = (y - v16f(_mm512_shuffle_ps(__m512(y), __m512(y), 0x00))) * splat(plan.size[1]);
+  const v16f sq = du * du + dv * dv;
+  const v16f la = v16f(_mm512_shuffle_ps(__m512(sq), __m512(sq), 0x55));
+  const v16f lb = v16f(_mm512_shuffle_ps(__m512(sq), __m512(sq), 0xaa));
+  const v16f ms = la < lb ? lb : la;  // std::max(la, lb)
+  // Normal, positive and finite, mantissa in [0x1000, 0x7ff000): as two unsigned
+  // range checks, independent of each other.
+  const v16i bits = v16i(ms), mant = bits & 0x7fffff;
+  const __mmask16 normal = _mm512_cmplt_epu32_mask(__m512i(bits - 0x00800000),
+                                                   _mm512_set1_epi32(0x7f000000));
+  const __mmask16 inside = _mm512_cmplt_epu32_mask(__m512i(mant - 0x1000),
+                                                   _mm512_set1_epi32(0x7ff000 - 0x1000));
+  if (__mmask16(normal & inside) != 0xffff) return false;
+  const v16i e = v16i(v16u(bits) >> 23) - 127;
+  const v16i linear = e >= 0 ? v16i{} + plan.minLinear : v16i{} + plan.magLinear;
+  v16i level = (e + 1) >> 1;
+  level = level < plan.first ? v16i{} + plan.first : level;
+  level = level > plan.last ? v16i{} + plan.last : level;
+  if (plan.mipNone) level = v16i{};
+  const v16i k = (level << 1) | linear;
+  const int key = _mm_cvtsi128_si32(_mm512_castsi512_si128(__m512i(k)));
+  if (_mm512_cmpeq_epi32_mask(__m512i(k), _mm512_set1_epi32(key)) != 0xffff) return false;
+  const SampleLevel* lv = plan.levels[key >> 1];
+  if (!lv) return false;
+  if (key & 1)
+    filter16<AU, AV, true>(*lv, u, v, __mmask16(mask), out);
+  else
+    filter16<AU, AV, false>(*lv, u, v, __mmask16(mask), out);
+  return true;
+}
+
+template <TextureAddress AU>
+Uniform2D uniformForV(TextureAddress av) {
+  switch (av) {
+    case TextureAddress::Wrap: return uniform16<AU, TextureAddress::Wrap>;
+    case TextureAddress::Mirror: return uniform16<AU, TextureAddress::Mirror>;
+    case TextureAddress::MirrorOnce: return uniform16<AU, TextureAddress::MirrorOnce>;
+    default: return uniform16<AU, TextureAddress::Clamp>;
+  }
+}
+
+template <TextureAddress AU, TextureAddress AV>
+constexpr Kernel2D kernelPair(bool linear) {
+  return linear ? kernel2D16<AU, AV, true> : kernel2D16<AU, AV, false>;
+}
+
+template <TextureAddress AU>
+constexpr Kernel2D kernelForV(TextureAddress av, bool linear) {
+  switch (av) {
+    case TextureAddress::Wrap: return kernelPair<AU, TextureAddress::Wrap>(linear);
+    case TextureAddress::Mirror: return kernelPair<AU, TextureAddress::Mirror>(linear);
+    case TextureAddress::MirrorOnce: return kernelPair<AU, TextureAddress::MirrorOnce>(linear);
+    default: return kernelPair<AU, TextureAddress::Clamp>(linear);
+  }
+}
+
+}  // namespace
+
+Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av) {
+  switch (au) {
+    case TextureAddress::Wrap: return uniformForV<TextureAddress::Wrap>(av);
+    case TextureAddress::Mirror: return uniformForV<TextureAddress::Mirror>(av);
+    case TextureAddress::MirrorOnce: return uniformForV<TextureAddress::MirrorOnce>(av);
+    default: return uniformForV<TextureAddress::Clamp>(av);
+  }
+}
+
+Kernel2D selectKernel2DAvx512(TextureAddress au, TextureAddress av, bool linear) {
+  switch (au) {
+    case TextureAddress::Wrap: return kernelForV<TextureAddress::Wrap>(av, linear);
+    case TextureAddress::Mirror: return kernelForV<TextureAddress::Mirror>(av, linear);
+    case TextureAddress::MirrorOnce: return kernelForV<TextureAddress::MirrorOnce>(av, linear);
+    default: return kernelForV<TextureAddress::Clamp>(av, linear);
+  }
+}
+
+}  // namespace refx::resource

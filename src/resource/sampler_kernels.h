@@ -1,0 +1,71 @@
+// The vectorised 2D kernels (one level of packed rgba8 texels, all 16 lanes) and what
+// their instruction-set variants share: sampler.cpp holds the AVX2 variant (8 lanes at
+// a time), sampler_avx512.cpp the AVX-512 one (16 lanes at a time), compiled with its
+// own flags. Both perform the same IEEE operations lane by lane, so they agree bit for
+// bit (tests/resource/test_sampler_isa.cpp runs both).
+#pragma once
+#include "refx/core/batch.h"
+#include "refx/core/cpu_features.h"
+#include "refx/resource/sampler.h"
+#include "refx/resource/texture.h"
+
+namespace refx::resource {
+
+// Filters one level for the 16 lanes' coordinates (u, v): POINT or LINEAR, the
+// addressing pair fixed by the variant chosen.
+using Kernel2D = void (*)(const SampleLevel&, const float*, const float*,
+                          float[4][kBatchLanes]);
+
+// The kernel for an addressing pair (BORDER excluded) and filter, in the variant of
+// `isa` (which the CPU must support).
+Kernel2D selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa);
+Kernel2D selectKernel2DAvx512(TextureAddress au, TextureAddress av, bool linear);
+
+// sample2DUniform of sampler.cpp for a prepared 2D texture (MIPFILTER NONE or POINT, λ
+// from quad derivatives, no LOD bias): what it needs of the texture and sampler state.
+struct UniformPlan {
+  float size[2];                    // level 0 width, height
+  int first, last;                  // MAXMIPLEVEL clamped, last level
+  int minLinear, magLinear;         // 1: LINEAR
+  bool mipNone;                     // MIPFILTER NONE: level 0
+  const SampleLevel* const* levels;  // per level, nullptr: not for the kernels
+};
+
+// Samples the batch when every quad's ρ² has the form that gives its level and filter
+// without a logarithm and all four quads agree on them, with the kernel of that level
+// and filter; lanes outside `mask` read 0. False: nothing written, the caller decides.
+using Uniform2D = bool (*)(const UniformPlan&, const float* u, const float* v, uint32_t mask,
+                           float out[4][kBatchLanes]);
+Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av);
+
+namespace kernels {
+
+// Sub-texel precision of filter weights (see the top of sampler.cpp).
+constexpr int kWeightBits = 8;
+constexpr float kWeightScale = float(1 << kWeightBits);
+constexpr float kWeightUnit = 1.0f / kWeightScale;
+
+// Coordinates are limited to +-2^22 first (NaN goes to the low end): beyond that a
+// float has no fraction left, and it keeps every later step in int range.
+constexpr float kCoordLimit = 4194304.0f;
+
+// x / 65280 and b / 255 are formed as a product with the reciprocal and one fma
+// correction step (see columnLerp and byteOver255).
+constexpr float kInv65280 = 1.0f / 65280.0f;
+constexpr float kInv255 = 1.0f / 255.0f;
+
+// Texel-space positions are clamped to [lo, hi] before conversion to int. It never
+// changes the texels of a finite coordinate and keeps indices small. (static: each
+// variant's translation unit has its own copy, compiled with its own flags.)
+static inline void positionRange(TextureAddress a, int n, float& lo, float& hi) {
+  if (a == TextureAddress::Wrap) {
+    lo = -1.0f, hi = float(n);
+  } else if (a == TextureAddress::Mirror) {
+    lo = -1.0f, hi = float(2 * n);
+  } else {
+    lo = -float(n + 2), hi = float(n + 2);
+  }
+}
+
+}  // namespace kernels
+}  // namespace refx::resource

@@ -1,0 +1,149 @@
+// The instruction-set variants of the 2D kernels (AVX2: two 8-lane halves, AVX-512: 16
+// lanes at once) agree bit for bit with each other and with the scalar reference, on
+// random and special coordinates, every addressing pair, both filters, every lane mask.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "refx/core/cpu_features.h"
+#include "refx/resource/sampler.h"
+#include "resource/sampler_internal.h"
+#include "resource/sampler_kernels.h"
+
+namespace refx {
+namespace {
+
+using namespace resource;
+
+constexpr int N = kBatchLanes;
+constexpr TextureAddress kModes[] = {TextureAddress::Wrap, TextureAddress::Mirror,
+                                     TextureAddress::Clamp, TextureAddress::MirrorOnce};
+
+TexturePtr randomTexture(int w, int h, int levels, uint32_t seed) {
+  auto tex = Texture::create2D(Format::A8R8G8B8, w, h, levels);
+  std::mt19937 rng(seed);
+  for (int l = 0; l < tex->levelCount(); ++l) {
+    uint8_t* p = tex->data(0, l);
+    for (size_t i = 0; i < tex->dataSize(0, l); ++i) p[i] = uint8_t(rng());
+  }
+  tex->markDirty();
+  return tex;
+}
+
+// Coordinates of one batch, by kind: anywhere in [-4, 4]; a small screen-like block (the
+// common case, whose 2x2 texels are adjacent in memory); texel centres and edges; values
+// at and beyond the limits (NaN, infinities, huge, tiny, -0).
+void fillCoords(std::mt19937& rng, int kind, int w, int h, float* u, float* v) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float inf = std::numeric_limits<float>::infinity();
+  const float special[] = {std::numeric_limits<float>::quiet_NaN(), inf, -inf, 1e30f, -1e30f,
+                           4194304.0f, -4194305.0f, -0.0f, 0.0f, 1.0f, -1.0f, 1e-30f, -1e-30f,
+                           0.99999994f, 2.0f, -2.5f};
+  const float u0 = unit(rng) * 8 - 4, v0 = unit(rng) * 8 - 4;
+  const float step = std::exp2(unit(rng) * 8 - 6) / float(w);
+  for (int l = 0; l < N; ++l) {
+    switch (kind) {
+      case 0:
+        u[l] = unit(rng) * 8 - 4, v[l] = unit(rng) * 8 - 4;
+        break;
+      case 1:
+        u[l] = u0 + step * float((l >> 2 & 1) * 2 + (l & 1));
+        v[l] = v0 + step * float((l >> 3) * 2 + (l >> 1 & 1));
+        break;
+      case 2:  // centres (k + 0.5)/W and edges k/W of texels, k in [-W, 2W]
+        u[l] = (float(int(rng() % (3 * w)) - w) + (rng() % 2 ? 0.5f : 0.0f)) / float(w);
+        v[l] = (float(int(rng() % (3 * h)) - h) + (rng() % 2 ? 0.5f : 0.0f)) / float(h);
+        break;
+      default:
+        u[l] = special[rng() % 16], v[l] = rng() % 2 ? special[rng() % 16] : unit(rng);
+        break;
+    }
+  }
+}
+
+TEST(SamplerIsaVariants, KernelsAgreeWithEachOtherAndTheReference) {
+  const bool avx512 = detectedIsa() == CpuIsa::Avx512;
+  std::mt19937 rng(2026);
+  const int sizes[][2] = {{1, 1}, {3, 5}, {64, 32}, {7, 1}, {1, 9}, {256, 256}};
+  int compared = 0;
+  for (const auto& size : sizes) {
+    const auto tex = randomTexture(size[0], size[1], 1, uint32_t(size[0] * 31 + size[1]));
+    const SampleLevel& lv = tex->sampleLevel(0, 0);
+    for (TextureAddress au : kModes)
+      for (TextureAddress av : kModes)
+        for (bool linear : {false, true}) {
+          const Kernel2D avx2Kernel = selectKernel2D(au, av, linear, CpuIsa::Avx2);
+          const Kernel2D avx512Kernel =
+              avx512 ? selectKernel2D(au, av, linear, CpuIsa::Avx512) : nullptr;
+          SamplerState s;
+          s.addressU = au, s.addressV = av;
+          s.magFilter = s.minFilter = linear ? TextureFilter::Linear : TextureFilter::Point;
+          for (int iter = 0; iter < 64; ++iter) {
+            alignas(64) float u[N], v[N];
+            fillCoords(rng, iter % 4, size[0], size[1], u, v);
+            float a[4][N], b[4][N], ref[4][N];
+            avx2Kernel(lv, u, v, a);
+            SampleRequest req;
+            req.u = u, req.v = v;
+            sampleTextureReference(*tex, s, req, ref);
+            ASSERT_EQ(std::memcmp(a, ref, sizeof a), 0)
+                << "avx2 " << size[0] << "x" << size[1] << " " << int(au) << "/" << int(av)
+                << " linear " << linear << " iter " << iter;
+            if (avx512Kernel) {
+              avx512Kernel(lv, u, v, b);
+              ASSERT_EQ(std::memcmp(a, b, sizeof a), 0)
+                  << "avx512 " << size[0] << "x" << size[1] << " " << int(au) << "/"
+                  << int(av) << " linear " << linear << " iter " << iter;
+            }
+            ++compared;
+          }
+        }
+  }
+  EXPECT_EQ(compared, 6 * 16 * 2 * 64);
+  if (!avx512) GTEST_SKIP() << "no AVX-512 on this CPU: the AVX2 variant checked alone";
+}
+
+// What sampleTexture and a PreparedSampler give does not depend on the active variant,
+// for every lane mask (lanes outside it read 0).
+TEST(SamplerIsaVariants, SamplingAgreesAcrossVariantsForEveryLaneMask) {
+  if (detectedIsa() != CpuIsa::Avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
+  const auto tex = randomTexture(64, 64, 0, 5);
+  std::mt19937 rng(17);
+  SamplerState s;
+  s.addressU = TextureAddress::Wrap, s.addressV = TextureAddress::Mirror;
+  s.magFilter = TextureFilter::Point, s.minFilter = TextureFilter::Linear;
+  s.mipFilter = TextureFilter::Point;
+  const CpuIsa previous = activeIsa();
+  setActiveIsa(CpuIsa::Avx2);
+  const PreparedSampler avx2Prepared(*tex, s);
+  setActiveIsa(CpuIsa::Avx512);
+  const PreparedSampler avx512Prepared(*tex, s);
+  for (uint32_t mask = 0; mask <= 0xffff; ++mask) {
+    alignas(64) float u[N], v[N];
+    fillCoords(rng, mask % 3 == 0 ? 0 : 1, 64, 64, u, v);
+    SampleRequest req;
+    req.u = u, req.v = v, req.laneMask = uint16_t(mask);
+    float a[4][N], b[4][N], c[4][N], d[4][N];
+    setActiveIsa(CpuIsa::Avx2);
+    sampleTexture(*tex, s, req, a);
+    setActiveIsa(CpuIsa::Avx512);
+    sampleTexture(*tex, s, req, b);
+    avx2Prepared.sampleImplicit(u, v, nullptr, uint16_t(mask), c);
+    avx512Prepared.sampleImplicit(u, v, nullptr, uint16_t(mask), d);
+    ASSERT_EQ(std::memcmp(a, b, sizeof a), 0) << "mask " << mask;
+    ASSERT_EQ(std::memcmp(a, c, sizeof a), 0) << "mask " << mask;
+    ASSERT_EQ(std::memcmp(a, d, sizeof a), 0) << "mask " << mask;
+    for (int l = 0; l < N; ++l) {
+      if (!(mask >> l & 1)) {
+        ASSERT_EQ(a[0][l], 0.0f) << "mask " << mask << " lane " << l;
+      }
+    }
+  }
+  setActiveIsa(previous);
+}
+
+}  // namespace
+}  // namespace refx
