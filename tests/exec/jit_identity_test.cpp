@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "refx/core/cpu_features.h"
 #include "refx/core/diagnostics.h"
 #include "refx/exec/lower.h"
 #include "refx/shader/assembler.h"
@@ -255,9 +256,9 @@ TEST(JitSwitches, EnvironmentAndOptionGiveTheInterpreter) {
   setenv("REFX_JIT", "0", 1);
   EXPECT_STREQ(prepare(p, ExecContext{}, r).backend, "interpreter");
   unsetenv("REFX_JIT");
-  setenv("REFX_JIT_ISA", "avx2", 1);
+  const refx::CpuIsa previous = refx::setActiveIsa(refx::CpuIsa::Avx2);  // what REFX_ISA=avx2 sets
   EXPECT_STREQ(prepare(p, ExecContext{}, r).backend, "jit-avx2");
-  unsetenv("REFX_JIT_ISA");
+  refx::setActiveIsa(previous);
 }
 
 TEST(JitSwitches, RegistersTheCodeWouldMissGiveTheInterpreter) {

@@ -73,8 +73,8 @@ struct PrepareOptions {
   // The environment variable REFX_JIT=0 turns native code off whatever this says.
   bool jit = true;
   // Instruction set of the native code: Auto takes the best the CPU has (AVX-512
-  // with F/BW/DQ/VL, else AVX2 with FMA); REFX_JIT_ISA=avx2 in the environment makes
-  // Auto choose AVX2. A set the CPU lacks means the interpreter.
+  // with F/BW/DQ/VL, else AVX2 with FMA) at refx's active level (activeIsa() in
+  // refx/core/cpu_features.h: REFX_ISA=avx2 in the environment makes Auto choose AVX2). A set the CPU lacks means the interpreter.
   enum class Isa : uint8_t { Auto, Avx2, Avx512 } isa = Isa::Auto;
 };
 

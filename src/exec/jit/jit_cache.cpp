@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "exec/jit/jit.h"
+#include "refx/core/cpu_features.h"
 
 namespace refx::exec::detail {
 
@@ -87,9 +88,8 @@ bool chooseJitIsa(const PrepareOptions& options, JitIsa& isa) {
       return host.avx512;
     case PrepareOptions::Isa::Auto: break;
   }
-  const char* forced = std::getenv("REFX_JIT_ISA");
-  const bool avx2Only = forced && std::strcmp(forced, "avx2") == 0;
-  if (host.avx512 && !avx2Only) {
+  // The level the rest of refx runs at (REFX_ISA=avx2 lowers it for everything).
+  if (host.avx512 && activeIsa() == CpuIsa::Avx512) {
     isa = JitIsa::Avx512;
     return true;
   }
