@@ -60,6 +60,10 @@ float randomColor(std::mt19937& rng) {
   return u(rng);
 }
 
+// A batch's depth: one of the stored depths' values (ties), sometimes NaN (which fails
+// every comparison but NOTEQUAL and ALWAYS).
+float randomDepth(std::mt19937& rng) { return rng() % 8 == 0 ? std::nanf("") : float(rng() % 5) / 4.0f; }
+
 // A random batch position and coverage: a quarter of the batches fully covered
 // (where inside the target), the lanes outside the target never live.
 void randomBatch(std::mt19937& rng, int& bx, int& by, uint16_t& mask) {
@@ -89,7 +93,7 @@ void runCase(const MergeState& m, AlphaTest alpha, bool hasAlpha, std::mt19937& 
     float z[kBatchLanes];
     for (int l = 0; l < kBatchLanes; ++l) {
       for (int c = 0; c < 4; ++c) colors[0].c[c][l] = randomColor(rng);
-      z[l] = float(rng() % 5) / 4.0f;
+      z[l] = randomDepth(rng);
     }
     if (m.alphaTest) alpha.ref = uint8_t(rng());
     const RasterDraw dr = drawFor(m, alpha, reference, hasAlpha);
@@ -179,7 +183,7 @@ TEST(MergeSpecialised, EarlyDepthTestSameAsTheGenericOne) {
       uint16_t mask;
       randomBatch(rng, bx, by, mask);
       float z[kBatchLanes];
-      for (float& v : z) v = rng() % 8 == 0 ? std::nanf("") : float(rng() % 5) / 4.0f;
+      for (float& v : z) v = randomDepth(rng);
       MergeState m;
       m.depthTest = true;
       m.depthWrite = dc.write;
