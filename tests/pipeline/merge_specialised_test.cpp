@@ -4,6 +4,7 @@
 // same for the early depth tests chooseEarlyDepthTest picks against earlyDepthTest.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -148,6 +149,35 @@ TEST(MergeSpecialised, SameBytesAndDepthsAsTheGenericMerge) {
           m.targets[0] = MergeState::Target::Unorm8Full;
           runCase(m, {}, hasAlpha, rng);
         }
+}
+
+// The destination's bytes as the generic merge reads them (b / 255.0f), to the bit: with
+// ONE/ONE each byte b is added to sources spaced one float step of b / 255 apart around
+// 0.5 / 255, where the sum rounds to b or b + 1, so a destination value one step off
+// moves a lane across the boundary.
+TEST(MergeSpecialised, DestinationBytesReadExactly) {
+  MergeState m;
+  m.blend = {true, BLEND_ONE, BLEND_ONE, BLENDOP_ADD, BLEND_ONE, BLEND_ONE, BLENDOP_ADD, {}};
+  m.targets[0] = MergeState::Target::Unorm8Full;
+  const MergeBatchFn specialised = chooseMerge(m);
+  ASSERT_NE(specialised, &mergeBatch);
+  for (int b = 0; b < 256; ++b) {
+    Surfaces reference;
+    std::fill(reference.color.begin(), reference.color.end(), uint8_t(b));
+    Surfaces fast = reference;
+    const float d = float(b) / 255.0f;
+    const float step = std::nextafter(d + 0.5f / 255.0f, 2.0f) - (d + 0.5f / 255.0f);
+    exec::LaneVec4 colors[kMaxRenderTargets]{};
+    for (int l = 0; l < kBatchLanes; ++l)
+      for (int c = 0; c < 4; ++c) colors[0].c[c][l] = 0.5f / 255.0f + float(l - 8) * step;
+    float z[kBatchLanes] = {};
+    const RasterDraw dr = drawFor(m, {}, reference, true);
+    const RasterDraw df = drawFor(m, {}, fast, true);
+    mergeBatch(dr, 0, 0, 0xffff, colors, z, false, false);
+    specialised(df, 0, 0, 0xffff, colors, z, false, false);
+    ASSERT_EQ(0, std::memcmp(reference.color.data(), fast.color.data(), reference.color.size()))
+        << "destination byte " << b;
+  }
 }
 
 TEST(MergeSpecialised, AlphaTestSameAsTheGenericMerge) {
