@@ -339,6 +339,7 @@ std::shared_ptr<const DrawPlan> buildDrawPlan(const DeviceState& st, const DrawS
                                                               : MergeState::Target::Unorm8Masked;
   }
   p.merge = chooseMerge(m);
+  if (p.earlyDepth) p.earlyDepthTestFn = chooseEarlyDepthTest(p.depthFunc, p.depthWrite);
   return plan;
 }
 

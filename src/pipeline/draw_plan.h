@@ -76,6 +76,7 @@ struct DrawPlan {
   bool earlyDepth = false, wBuffer = false, srgbWrite = false, dither = false;
   uint32_t alphaFunc = 8, depthFunc = 4;
   MergeBatchFn merge = nullptr;
+  EarlyDepthFn earlyDepthTestFn = nullptr;
 };
 
 // The key of the plan for `st` drawing into `surfaces` with `options`/`caps`.

@@ -346,94 +346,258 @@ void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::
 
 namespace {
 
-enum class BlendKind { None, SrcAlpha, One };  // ADD of SRCALPHA/INVSRCALPHA, ONE/ONE
-enum class DepthKind { Off, Less, LessEqual };
+// No blending (as a blend factor) or no depth test (as a compare function): neither
+// enumeration uses 0.
+constexpr uint32_t kOff = 0;
 
-// mergeBatch for: no alpha test, no stencil, target 0 alone, 8-bit with every channel
-// written, no sRGB write or dithering; the blend and depth test as the parameters say.
+// The lanes of `on` (each all ones or zero) as bits.
+inline int laneBits(v8i on) {
+#if defined(__AVX__)
+  __m256 f;
+  __builtin_memcpy(&f, &on, sizeof f);
+  return _mm256_movemask_ps(f);
+#else
+  int bits = 0;
+  for (int l = 0; l < 8; ++l) bits |= (on[l] & 1) << l;
+  return bits;
+#endif
+}
+
+// toUnorm8 on eight lanes: NaN and negatives 0, then round to nearest.
+inline v8i toUnorm8x8(v8f v) {
+  const v8f zero{};
+#if defined(__AVX__)
+  // vmaxps/vminps return their second operand for NaN and for equal values (±0).
+  __m256 m;
+  __builtin_memcpy(&m, &v, sizeof m);
+  m = _mm256_min_ps(_mm256_max_ps(m, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
+  __builtin_memcpy(&v, &m, sizeof v);
+#else
+  const v8f one = zero + 1.0f;
+  v = v > zero ? v : zero;
+  v = v < one ? v : one;
+#endif
+  return __builtin_convertvector(v * (zero + 255.0f) + (zero + 0.5f), v8i);
+}
+
+// D3DCMPFUNC F on eight depths at once.
+template <uint32_t F>
+inline v8i compareDepths(v8f a, v8f b) {
+  if constexpr (F == CMP_LESS) return a < b;
+  else if constexpr (F == CMP_LESSEQUAL) return a <= b;
+  else if constexpr (F == CMP_GREATER) return a > b;
+  else if constexpr (F == CMP_GREATEREQUAL) return a >= b;
+  else if constexpr (F == CMP_EQUAL) return a == b;
+  else if constexpr (F == CMP_NOTEQUAL) return a != b;
+  else if constexpr (F == CMP_NEVER) return v8i{};
+  else return v8i{} - 1;
+}
+
+// The depth test F of a batch, writing the passing lanes' depth when Write is set.
+template <uint32_t F, bool Write>
+uint16_t depthTestBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z) {
+  if (bx + 4 <= d.width && by + 4 <= d.height)
+    return depthRows(d, bx, by, mask, z, Write, [](v8f a, v8f b) { return compareDepths<F>(a, b); });
+  for (int l = 0; l < kBatchLanes; ++l) {
+    if (!(mask & (1 << l))) continue;
+    float& stored = d.depth->depth[size_t(by + kLaneY[l]) * d.width + (bx + kLaneX[l])];
+    if (!compareValues(F, z[l], stored)) mask = uint16_t(mask & ~(1u << l));
+    else if (Write) stored = z[l];
+  }
+  return mask;
+}
+
+template <uint32_t F, bool Write>
+uint16_t earlyDepthSpecialised(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z, bool) {
+  return depthTestBatch<F, Write>(d, bx, by, mask, z);
+}
+
+// The alpha test (ALPHAFUNC against ALPHAREF on oC0's alpha in 8 bits) of a batch.
+uint16_t alphaTestBatch(const RasterDraw& d, uint16_t mask, const float* alpha) {
+  uint32_t pass = 0;
+  const v8i ref = v8i{} + int32_t(d.alphaRef);
+  for (int h = 0; h < 2; ++h) {
+    v8f v;
+    __builtin_memcpy(&v, alpha + 8 * h, sizeof v);
+    const v8i a = toUnorm8x8(v);  // 0..255: signed compares are the unsigned ones
+    v8i ok;
+    switch (d.alphaFunc) {
+      case CMP_NEVER: ok = v8i{}; break;
+      case CMP_LESS: ok = a < ref; break;
+      case CMP_EQUAL: ok = a == ref; break;
+      case CMP_LESSEQUAL: ok = a <= ref; break;
+      case CMP_GREATER: ok = a > ref; break;
+      case CMP_NOTEQUAL: ok = a != ref; break;
+      case CMP_GREATEREQUAL: ok = a >= ref; break;
+      default: ok = v8i{} - 1; break;
+    }
+    pass |= uint32_t(laneBits(ok)) << (8 * h);
+  }
+  return uint16_t(mask & pass);
+}
+
+// blendFactor for factor F and channel c, eight lanes at once.
+template <uint32_t F>
+inline v8f blendFactorx8(int c, const v8f* src, const v8f* dst) {
+  const v8f one = v8f{} + 1.0f;
+  if constexpr (F == BLEND_ZERO) return v8f{};
+  else if constexpr (F == BLEND_ONE) return one;
+  else if constexpr (F == BLEND_SRCCOLOR) return src[c];
+  else if constexpr (F == BLEND_INVSRCCOLOR) return one - src[c];
+  else if constexpr (F == BLEND_SRCALPHA) return src[3];
+  else if constexpr (F == BLEND_INVSRCALPHA) return one - src[3];
+  else if constexpr (F == BLEND_DESTALPHA) return dst[3];
+  else if constexpr (F == BLEND_INVDESTALPHA) return one - dst[3];
+  else if constexpr (F == BLEND_DESTCOLOR) return dst[c];
+  else if constexpr (F == BLEND_INVDESTCOLOR) return one - dst[c];
+  else static_assert(F == BLEND_ZERO, "blend factor without an eight-lane version");
+}
+
+// Eight lanes of an 8-bit target (B G R A in memory) blended with lanes k..k+7 of
+// the colour by SF/DF and ADD: blendInto and writePixel's operations in their order.
+template <uint32_t SF, uint32_t DF>
+inline v8u blendPixels(v8u old, const float (*color)[kBatchLanes], int k, bool hasAlpha) {
+  const v8f zero{}, one = zero + 1.0f, k255 = zero + 255.0f;
+  v8f src[4], dst[4];
+  for (int c = 0; c < 4; ++c) {
+    v8f v;
+    __builtin_memcpy(&v, color[c] + k, sizeof v);
+    v = v < zero ? zero : v;  // std::clamp(v, 0, 1): NaN stays NaN
+    src[c] = one < v ? one : v;
+  }
+  const v8i bytes = v8i(old);
+  dst[0] = __builtin_convertvector((bytes >> 16) & 0xff, v8f) / k255;
+  dst[1] = __builtin_convertvector((bytes >> 8) & 0xff, v8f) / k255;
+  dst[2] = __builtin_convertvector(bytes & 0xff, v8f) / k255;
+  dst[3] = hasAlpha ? __builtin_convertvector((bytes >> 24) & 0xff, v8f) / k255 : one;
+  v8i q[4];
+  for (int c = 0; c < 4; ++c)
+    q[c] = toUnorm8x8(src[c] * blendFactorx8<SF>(c, src, dst) + dst[c] * blendFactorx8<DF>(c, src, dst));
+  const v8i a = hasAlpha ? q[3] : v8i{} + 255;
+  return v8u((a << 24) | (q[0] << 16) | (q[1] << 8) | q[2]);
+}
+
+// Blends the live lanes of a batch into target t: inside the surface two rows of 4
+// pixels per half, lanes that are not live written back as they were.
+template <uint32_t SF, uint32_t DF>
+void blendStore(const ColorTarget& t, int width, int height, int bx, int by, uint16_t mask,
+                const float (*color)[kBatchLanes]) {
+  const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
+  if (bx + 4 <= width && by + 4 <= height) {
+    for (int h = 0; h < 2; ++h) {
+      const int live = (mask >> (8 * h)) & 0xff;
+      if (!live) continue;
+      uint8_t* row0 = t.data + size_t(by + 2 * h) * t.pitch + size_t(bx) * 4;
+      uint8_t* row1 = row0 + t.pitch;
+      v4u r0, r1;
+      __builtin_memcpy(&r0, row0, sizeof r0);
+      __builtin_memcpy(&r1, row1, sizeof r1);
+      const v8u old = __builtin_shufflevector(r0, r1, 0, 1, 4, 5, 2, 3, 6, 7);
+      const v8u p = (laneBit & live) != 0 ? blendPixels<SF, DF>(old, color, 8 * h, t.hasAlpha) : old;
+      r0 = __builtin_shufflevector(p, p, 0, 1, 4, 5);
+      r1 = __builtin_shufflevector(p, p, 2, 3, 6, 7);
+      __builtin_memcpy(row0, &r0, sizeof r0);
+      __builtin_memcpy(row1, &r1, sizeof r1);
+    }
+    return;
+  }
+  // At the surface's edge: the live lanes gathered into lane order and back.
+  alignas(32) uint32_t px[kBatchLanes] = {};
+  auto at = [&](int l) { return t.data + size_t(by + kLaneY[l]) * t.pitch + size_t(bx + kLaneX[l]) * 4; };
+  for (int l = 0; l < kBatchLanes; ++l)
+    if (mask & (1 << l)) __builtin_memcpy(px + l, at(l), 4);
+  for (int k = 0; k < kBatchLanes; k += 8) {
+    v8u old;
+    __builtin_memcpy(&old, px + k, sizeof old);
+    const v8u p = blendPixels<SF, DF>(old, color, k, t.hasAlpha);
+    __builtin_memcpy(px + k, &p, sizeof p);
+  }
+  for (int l = 0; l < kBatchLanes; ++l)
+    if (mask & (1 << l)) __builtin_memcpy(at(l), px + l, 4);
+}
+
+// mergeBatch for: no stencil, target 0 alone, 8-bit with every channel written, no
+// sRGB write or dithering; the alpha test (any function) as the draw says, depth test
+// DepthF (kOff: none or already done early), blending SF/DF with ADD (kOff: none).
 // The same operations in the same order as the generic path, so the same bytes.
-template <BlendKind B, DepthKind D, bool WriteDepth>
+template <uint32_t SF, uint32_t DF, uint32_t DepthF>
 void mergeSpecialised(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::LaneVec4* colors,
                       const float* z, bool depthAlreadyTested, bool) {
-  if constexpr (D != DepthKind::Off) {
+  const float (*color)[kBatchLanes] = colors[0].c;
+  if (d.alphaTest) {
+    mask = alphaTestBatch(d, mask, color[3]);
+    if (!mask) return;
+  }
+  if constexpr (DepthF != kOff) {
     if (!depthAlreadyTested) {
-      if (bx + 4 <= d.width && by + 4 <= d.height) {
-        if constexpr (D == DepthKind::Less)
-          mask = depthRows(d, bx, by, mask, z, WriteDepth, [](v8f a, v8f b) { return a < b; });
-        else
-          mask = depthRows(d, bx, by, mask, z, WriteDepth, [](v8f a, v8f b) { return a <= b; });
-      } else {
-        for (int l = 0; l < kBatchLanes; ++l) {
-          if (!(mask & (1 << l))) continue;
-          float& stored = d.depth->depth[size_t(by + kLaneY[l]) * d.width + (bx + kLaneX[l])];
-          const bool pass = D == DepthKind::Less ? z[l] < stored : z[l] <= stored;
-          if (!pass) mask = uint16_t(mask & ~(1u << l));
-          else if (WriteDepth) stored = z[l];
-        }
-      }
+      mask = d.depthWrite ? depthTestBatch<DepthF, true>(d, bx, by, mask, z)
+                          : depthTestBatch<DepthF, false>(d, bx, by, mask, z);
       if (!mask) return;
     }
   }
-  const ColorTarget& t = d.targets[0];
-  const float (*color)[kBatchLanes] = colors[0].c;
-  if constexpr (B == BlendKind::None) {
-    storeOpaque(t, d.width, d.height, bx, by, mask, color);
-  } else {
-    for (int l = 0; l < kBatchLanes; ++l) {
-      if (!(mask & (1 << l))) continue;
-      const int x = bx + kLaneX[l], y = by + kLaneY[l];
-      uint8_t* px = t.data + size_t(y) * t.pitch + size_t(x) * 4;  // B G R A
-      const float dst[4] = {px[2] / 255.0f, px[1] / 255.0f, px[0] / 255.0f, t.hasAlpha ? px[3] / 255.0f : 1.0f};
-      float src[4];
-      for (int c = 0; c < 4; ++c) src[c] = std::clamp(color[c][l], 0.0f, 1.0f);
-      float out[4];
-      if constexpr (B == BlendKind::SrcAlpha) {
-        const float fs = src[3], fd = 1 - src[3];
-        for (int c = 0; c < 4; ++c) out[c] = src[c] * fs + dst[c] * fd;
-      } else {
-        for (int c = 0; c < 4; ++c) out[c] = src[c] * 1.0f + dst[c] * 1.0f;
-      }
-      px[2] = toUnorm8(out[0]);
-      px[1] = toUnorm8(out[1]);
-      px[0] = toUnorm8(out[2]);
-      px[3] = t.hasAlpha ? toUnorm8(out[3]) : 255;
-    }
+  if constexpr (SF == kOff) storeOpaque(d.targets[0], d.width, d.height, bx, by, mask, color);
+  else blendStore<SF, DF>(d.targets[0], d.width, d.height, bx, by, mask, color);
+}
+
+template <uint32_t SF, uint32_t DF>
+MergeBatchFn chooseDepth(uint32_t depthFunc) {
+  switch (depthFunc) {
+    case kOff: return mergeSpecialised<SF, DF, kOff>;
+    case CMP_LESS: return mergeSpecialised<SF, DF, CMP_LESS>;
+    case CMP_LESSEQUAL: return mergeSpecialised<SF, DF, CMP_LESSEQUAL>;
+    case CMP_GREATER: return mergeSpecialised<SF, DF, CMP_GREATER>;
+    case CMP_GREATEREQUAL: return mergeSpecialised<SF, DF, CMP_GREATEREQUAL>;
+    case CMP_EQUAL: return mergeSpecialised<SF, DF, CMP_EQUAL>;
+    default: return mergeBatch;
   }
 }
 
-template <BlendKind B>
-MergeBatchFn chooseDepth(DepthKind depth, bool write) {
-  switch (depth) {
-    case DepthKind::Off: return mergeSpecialised<B, DepthKind::Off, false>;
-    case DepthKind::Less:
-      return write ? mergeSpecialised<B, DepthKind::Less, true> : mergeSpecialised<B, DepthKind::Less, false>;
-    case DepthKind::LessEqual:
-      return write ? mergeSpecialised<B, DepthKind::LessEqual, true>
-                   : mergeSpecialised<B, DepthKind::LessEqual, false>;
-  }
-  return mergeBatch;
+// The blend factors as blendInto takes them: BOTHSRCALPHA and BOTHINVSRCALPHA stand
+// for a source and destination factor together.
+void resolveBothFactors(uint32_t& src, uint32_t& dst) {
+  if (src == BLEND_BOTHSRCALPHA) { src = BLEND_SRCALPHA; dst = BLEND_INVSRCALPHA; }
+  if (src == BLEND_BOTHINVSRCALPHA) { src = BLEND_INVSRCALPHA; dst = BLEND_SRCALPHA; }
 }
 
 }  // namespace
 
 MergeBatchFn chooseMerge(const MergeState& m) {
-  if (m.alphaTest || m.stencil || m.srgbWrite || m.dither) return mergeBatch;
+  if (m.stencil || m.srgbWrite || m.dither) return mergeBatch;
   if (m.targets[0] != MergeState::Target::Unorm8Full) return mergeBatch;
   for (size_t i = 1; i < m.targets.size(); ++i)
     if (m.targets[i] != MergeState::Target::None) return mergeBatch;
-  DepthKind depth = DepthKind::Off;
-  if (m.depthTest) {
-    if (m.depthFunc == CMP_LESS) depth = DepthKind::Less;
-    else if (m.depthFunc == CMP_LESSEQUAL) depth = DepthKind::LessEqual;
-    else return mergeBatch;
-  }
+  // An early depth test leaves the merge nothing to test.
+  const uint32_t depth = m.depthTest && !m.earlyDepth ? m.depthFunc : kOff;
   const RasterDraw::Blend& b = m.blend;
-  if (!b.enable) return chooseDepth<BlendKind::None>(depth, m.depthWrite);
-  if (b.op != BLENDOP_ADD || b.opA != BLENDOP_ADD || b.srcA != b.src || b.dstA != b.dst) return mergeBatch;
-  if (b.src == BLEND_SRCALPHA && b.dst == BLEND_INVSRCALPHA)
-    return chooseDepth<BlendKind::SrcAlpha>(depth, m.depthWrite);
-  if (b.src == BLEND_ONE && b.dst == BLEND_ONE) return chooseDepth<BlendKind::One>(depth, m.depthWrite);
+  if (!b.enable) return chooseDepth<kOff, kOff>(depth);
+  if (b.op != BLENDOP_ADD || b.opA != BLENDOP_ADD) return mergeBatch;
+  uint32_t sf = b.src, df = b.dst, sa = b.srcA, da = b.dstA;
+  resolveBothFactors(sf, df);
+  resolveBothFactors(sa, da);
+  if (sa != sf || da != df) return mergeBatch;
+  // The pairs the samples draw with: alpha blending, additive passes, modulation (2x).
+  if (sf == BLEND_SRCALPHA && df == BLEND_INVSRCALPHA) return chooseDepth<BLEND_SRCALPHA, BLEND_INVSRCALPHA>(depth);
+  if (sf == BLEND_ONE && df == BLEND_ONE) return chooseDepth<BLEND_ONE, BLEND_ONE>(depth);
+  if (sf == BLEND_ZERO && df == BLEND_SRCCOLOR) return chooseDepth<BLEND_ZERO, BLEND_SRCCOLOR>(depth);
+  if (sf == BLEND_DESTCOLOR && df == BLEND_ZERO) return chooseDepth<BLEND_DESTCOLOR, BLEND_ZERO>(depth);
+  if (sf == BLEND_SRCALPHA && df == BLEND_ONE) return chooseDepth<BLEND_SRCALPHA, BLEND_ONE>(depth);
+  if (sf == BLEND_DESTCOLOR && df == BLEND_SRCCOLOR) return chooseDepth<BLEND_DESTCOLOR, BLEND_SRCCOLOR>(depth);
   return mergeBatch;
+}
+
+EarlyDepthFn chooseEarlyDepthTest(uint32_t depthFunc, bool writeDepth) {
+  switch (depthFunc) {
+    case CMP_LESS: return writeDepth ? earlyDepthSpecialised<CMP_LESS, true> : earlyDepthSpecialised<CMP_LESS, false>;
+    case CMP_LESSEQUAL:
+      return writeDepth ? earlyDepthSpecialised<CMP_LESSEQUAL, true> : earlyDepthSpecialised<CMP_LESSEQUAL, false>;
+    case CMP_GREATER:
+      return writeDepth ? earlyDepthSpecialised<CMP_GREATER, true> : earlyDepthSpecialised<CMP_GREATER, false>;
+    case CMP_GREATEREQUAL:
+      return writeDepth ? earlyDepthSpecialised<CMP_GREATEREQUAL, true>
+                        : earlyDepthSpecialised<CMP_GREATEREQUAL, false>;
+    case CMP_EQUAL: return writeDepth ? earlyDepthSpecialised<CMP_EQUAL, true> : earlyDepthSpecialised<CMP_EQUAL, false>;
+    default: return earlyDepthTest;
+  }
 }
 
 }  // namespace refx::pipeline

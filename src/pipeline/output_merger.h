@@ -40,10 +40,17 @@ struct MergeState {
   std::array<Target, kMaxRenderTargets> targets{};
 };
 
-// A merge specialised for `m` (no blend, SRCALPHA/INVSRCALPHA or ONE/ONE; depth off or
-// LESS/LESSEQUAL with or without write; no stencil or alpha test; an 8-bit target 0
-// alone with every channel written; no sRGB or dithering), or mergeBatch. Either gives
-// the same bytes and depths.
+// A merge specialised for `m` (blending off, or ADD of SRCALPHA/INVSRCALPHA, ONE/ONE,
+// ZERO/SRCCOLOR, DESTCOLOR/ZERO, DESTCOLOR/SRCCOLOR or SRCALPHA/ONE; depth off, early,
+// or LESS, LESSEQUAL, GREATER, GREATEREQUAL or EQUAL with or without write; the alpha
+// test; no stencil; an 8-bit target 0 alone with every channel written; no sRGB or
+// dithering), vectorised over the batch, or mergeBatch. Either gives the same bytes
+// and depths.
 MergeBatchFn chooseMerge(const MergeState& m);
+
+// earlyDepthTest specialised for `depthFunc` (LESS, LESSEQUAL, GREATER, GREATEREQUAL,
+// EQUAL) and `writeDepth`, or earlyDepthTest itself. Either passes the same lanes and
+// writes the same depths.
+EarlyDepthFn chooseEarlyDepthTest(uint32_t depthFunc, bool writeDepth);
 
 }  // namespace refx::pipeline

@@ -126,6 +126,7 @@ void bindOutputMerger(const DrawPlan& plan, const DeviceState& st, const DrawSur
                                                   st.rs(RS_CCW_STENCILZFAIL), st.rs(RS_CCW_STENCILPASS)}
                         : d.stencilOps[0];
   d.merge = plan.merge;
+  d.earlyDepthTestFn = plan.earlyDepthTestFn;
 }
 
 }  // namespace refx::pipeline

@@ -185,7 +185,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
     }
   }
   if (d.earlyDepth) {
-    mask = earlyDepthTest(d, bx, by, mask, w.z, d.depthWrite);
+    mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, w.z, d.depthWrite);
     if (!mask) return;
   }
   for (int h = 0; h < 2; ++h) wv[h] = one / load8(w.invW + 8 * h);

@@ -67,6 +67,10 @@ struct RasterDraw;
 using MergeBatchFn = void (*)(const RasterDraw& d, int bx, int by, uint16_t mask,
                               const exec::LaneVec4* colors, const float* z, bool depthAlreadyTested,
                               bool counterClockwise);
+// The early depth test of a batch, returning the lanes that pass (output_merger.h
+// earlyDepthTest or a version of it specialised for the draw's depth state).
+using EarlyDepthFn = uint16_t (*)(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z,
+                                  bool writeDepth);
 
 // Everything the tile workers need for one draw.
 struct RasterDraw {
@@ -105,6 +109,8 @@ struct RasterDraw {
   std::array<std::array<uint32_t, 4>, 2> stencilOps{};
   // The merge for the draw's state; null: mergeBatch.
   MergeBatchFn merge = nullptr;
+  // The early depth test for the draw's state; null: earlyDepthTest.
+  EarlyDepthFn earlyDepthTestFn = nullptr;
   // D3DZB_USEW: the depth tested and written is w / w_far (projectionFarW), from the
   // interpolated 1/w, plus Primitive::wDepthOffset, instead of z.
   bool wBuffer = false;
