@@ -284,7 +284,9 @@ TEST(DrawPlanCache, RecordsWhatRunsANewPlansPrograms) {
         // Native code where the CPU has AVX2 (any x86-64-v3 machine refx is built for)
         // unless REFX_JIT=0 is set for the whole process.
         const char* env = std::getenv("REFX_JIT");
-        if (!env || std::string(env) != "0") EXPECT_EQ(b.backend.rfind("jit-", 0), 0u) << b.backend;
+        if (!env || std::string(env) != "0") {
+          EXPECT_EQ(b.backend.rfind("jit-", 0), 0u) << b.backend;
+        }
       }
     }
   }
