@@ -193,6 +193,42 @@ TEST(JitIdentity, RandomPrograms) {
   }
 }
 
+// The ops native code runs without the interpreter's routine, inline or through a
+// lane helper sharing the interpreter's libm calls: random programs of them on
+// special values (zeros of both signs, infinities, NaN, denormals, huge values,
+// negative bases for pow), straight and inside flow control.
+TEST(JitIdentity, RandomProgramsOfLaneOpsOnSpecialValues) {
+  const auto isas = availableIsas();
+  if (isas.empty()) GTEST_SKIP() << "no AVX2 on this CPU";
+  static const Op kOps[] = {Op::Exp2, Op::Log2, Op::Pow,  Op::Lit,  Op::ExpP, Op::SinCos, Op::Round,
+                            Op::Dist, Op::Crs,  Op::Sgn,  Op::Quot, Op::SetP, Op::Dsx,    Op::Dsy};
+  std::mt19937 rng(4242);
+  int perOp[std::size(kOps)] = {};
+  for (int n = 0; n < 1200; ++n) {
+    const bool flow = n % 4 == 3;
+    Program p = flow ? randomFlowProgram(rng) : randomShell(rng);
+    if (!flow) p.code.resize(1 + rng() % 8);
+    for (Instr& in : p.code) {
+      if (in.op >= Op::If) continue;
+      if (!flow) in = randomInstruction(rng);
+      const size_t k = rng() % std::size(kOps);
+      in.op = kOps[k];
+      ++perOp[k];
+      in.cmp = uint8_t(rng() % 7);  // 0: always
+    }
+    Ranges ranges;
+    ranges.specialValues = true;
+    if (n % 2) ranges.lo = -300.0f, ranges.hi = 300.0f;
+    for (auto isa : isas) {
+      const Outcome o = compare(p, isa, uint32_t(n), ranges);
+      ASSERT_NE(o.backend, "interpreter");
+      ASSERT_EQ(o.interpretedInstructions, 0) << listProgram(p);
+      ASSERT_EQ(o.mismatch, "") << "program " << n << " (" << isaName(isa) << ")\n" << listProgram(p);
+    }
+  }
+  for (int count : perOp) EXPECT_GT(count, 100);
+}
+
 // rep 255 { rep 255 { add; mul } }: 255 * (1 + 255 * 3 + 1) instructions, more than
 // kMaxExecutedInstructions, so the run stops inside a native block's range: it must
 // stop where the interpreter stops.
