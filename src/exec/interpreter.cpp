@@ -1196,6 +1196,14 @@ Vec4 uniformRegisterValue(const Src& s, int index, const ExecContext& ctx, const
   return uniformValue(s, index, ctx, p);
 }
 
+void fetchSource(const Src& s, const Program& p, const ExecContext& ctx, const BatchRegisters& regs,
+                 float (*out)[kBatchLanes]) {
+  Operand o;
+  fetch(s, regs, ctx, p, out, o);
+  for (int c = 0; c < 4; ++c)
+    if (o.c[c] != out[c]) std::memcpy(out[c], o.c[c], sizeof out[c]);
+}
+
 }  // namespace detail
 
 }  // namespace refx::exec

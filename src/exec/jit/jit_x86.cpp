@@ -40,6 +40,18 @@ void callInstruction(JitFrame* f, uint32_t index) {
   executeInstruction(f->program->code[index], *f->program, *f->ctx, *f->regs);
 }
 
+// Called by generated code: source i of an instruction as the interpreter reads it.
+void fetchSourceLanes(JitFrame* f, uint32_t index, uint32_t i, float* out) {
+  fetchSource(f->program->code[index].src[i], *f->program, *f->ctx, *f->regs,
+              reinterpret_cast<float (*)[kBatchLanes]>(out));
+}
+
+// Sources read through the interpreter's fetch: relative addressing, and the integer
+// and boolean constant files.
+bool fetchedByHelper(const Src& s) {
+  return s.rel != RelMode::None || s.file == RegFile::ConstInt || s.file == RegFile::ConstBool;
+}
+
 bool isLaneFile(RegFile f) { return f == RegFile::Temp || f == RegFile::Input || f == RegFile::Output; }
 
 // Ops the interpreter's prepared path runs with affine source modifiers (v * k + o);
@@ -126,7 +138,7 @@ class Generator {
     if (in.op != Op::Kill && (in.dst.rel != RelMode::None || !isLaneFile(in.dst.file))) return false;
     for (int i = 0; i < sourceCount(in.op); ++i) {
       const Src& s = in.src[i];
-      if (s.rel != RelMode::None) return false;
+      if (fetchedByHelper(s)) continue;
       if (!isLaneFile(s.file) && s.file != RegFile::Const && s.file != RegFile::Imm) return false;
     }
     return true;
@@ -149,6 +161,7 @@ class Generator {
 
   void emitInstruction(uint32_t index) {
     const Instr& in = program_.code[index];
+    for (bool& f : fetched_) f = false;
     if (sampledDirectly(in)) {
       emitTex(index);
       return;
@@ -161,6 +174,13 @@ class Generator {
     affine_ = !generic_ && affineModifierOp(in.op);
     for (int i = 0; i < sourceCount(in.op); ++i) {
       const Src& s = in.src[i];
+      fetched_[i] = fetchedByHelper(s);
+      if (fetched_[i]) {
+        // The interpreter's routine runs such instructions: modifiers through applyMod.
+        affine_ = false;
+        emitFetch(index, i);
+        continue;
+      }
       float k, o;
       if (isLaneFile(s.file) && s.mod != SrcMod::None && !affineMod(s.mod, k, o)) affine_ = false;
       if (isLaneFile(s.file)) use(s.file, s.index);
@@ -202,6 +222,23 @@ class Generator {
       case Op::SinCos: emitLaneHelper(in, sinCosLanes); break;
       default: break;
     }
+  }
+
+  // Source i of instruction `index` into a stack buffer by the interpreter's fetch
+  // (before any result of the instruction is written).
+  void emitFetch(uint32_t index, int i) {
+    fetchedAt_[i] = cc_.newStack(4 * kComponentBytes, 64);
+    forget();
+    x86::Gp out = cc_.newIntPtr();
+    cc_.lea(out, fetchedAt_[i]);
+    InvokeNode* call;
+    cc_.invoke(&call, imm(reinterpret_cast<void*>(&fetchSourceLanes)),
+               FuncSignatureT<void, JitFrame*, uint32_t, uint32_t, float*>(CallConvId::kHost));
+    call->setArg(0, frame_);
+    call->setArg(1, imm(index));
+    call->setArg(2, imm(i));
+    call->setArg(3, out);
+    forget();
   }
 
   void use(RegFile f, int index) {
@@ -445,6 +482,7 @@ class Generator {
   // interpreter applies them.
   V source(const Instr& in, int i, int c) {
     const Src& s = in.src[i];
+    if (fetched_[i]) return loadHalves(fetchedAt_[i].cloneAdjusted(c * kComponentBytes));  // swizzled, modified
     const int comp = (s.swizzle >> (2 * c)) & 3;
     if (isLaneFile(s.file)) {
       V v = laneValue(s.file, s.index, comp);
@@ -694,7 +732,7 @@ class Generator {
       for (const auto& o : call.operand) {
         if (o[0] < 0) continue;
         const Src& s = in.src[o[0]];
-        if ((isLaneFile(s.file) && s.mod == SrcMod::None) || buffered[o[0]][o[1]]) continue;
+        if ((isLaneFile(s.file) && s.mod == SrcMod::None && !fetched_[o[0]]) || buffered[o[0]][o[1]]) continue;
         put(operands, o[0] * 4 + o[1], source(in, o[0], o[1]));
         buffered[o[0]][o[1]] = true;
       }
@@ -767,6 +805,8 @@ class Generator {
   const size_t begin_, end_;
   const bool generic_;
   bool affine_ = false;  // the current instruction's lane sources use affine modifiers
+  bool fetched_[3] = {};  // the current instruction's sources read by emitFetch, into:
+  x86::Mem fetchedAt_[3];
   std::map<Key, V> values_;                   // see memo()
   std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
   x86::Gp frame_, temps_, inputs_, outputs_, constants_, immediates_;
