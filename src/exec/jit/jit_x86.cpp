@@ -105,7 +105,10 @@ class Generator {
     for (size_t i = begin_; i < end_; ++i) {
       const Instr& in = program_.code[i];
       named[int(in.dst.file)] = true;
-      for (const Src& src : in.src) named[int(src.file)] = true;
+      for (const Src& src : in.src) {
+        named[int(src.file)] = true;
+        if (src.rel == RelMode::Temp) named[int(RegFile::Temp)] = true;  // the address register
+      }
     }
     if (named[int(RegFile::Temp)]) temps_ = load(offsetof(JitFrame, temps));
     if (named[int(RegFile::Input)]) inputs_ = load(offsetof(JitFrame, inputs));
@@ -161,7 +164,7 @@ class Generator {
 
   void emitInstruction(uint32_t index) {
     const Instr& in = program_.code[index];
-    for (bool& f : fetched_) f = false;
+    for (int i = 0; i < 3; ++i) fetched_[i] = gathered_[i] = false;
     if (sampledDirectly(in)) {
       emitTex(index);
       return;
@@ -174,11 +177,13 @@ class Generator {
     affine_ = !generic_ && affineModifierOp(in.op);
     for (int i = 0; i < sourceCount(in.op); ++i) {
       const Src& s = in.src[i];
-      fetched_[i] = fetchedByHelper(s);
-      if (fetched_[i]) {
+      if (fetchedByHelper(s)) {
         // The interpreter's routine runs such instructions: modifiers through applyMod.
         affine_ = false;
-        emitFetch(index, i);
+        gathered_[i] = gatheredConstant(s);
+        fetched_[i] = !gathered_[i];
+        if (gathered_[i]) use(RegFile::Temp, s.relReg);
+        else emitFetch(index, i);
         continue;
       }
       float k, o;
@@ -239,6 +244,55 @@ class Generator {
     call->setArg(2, imm(i));
     call->setArg(3, out);
     forget();
+  }
+
+  // c[a0.x + n] (a0 in a temp) read natively when the program defines no local
+  // constant (which would override the API's at some indices).
+  bool gatheredConstant(const Src& s) const {
+    if (s.rel != RelMode::Temp || s.file != RegFile::Const) return false;
+    for (const auto local : program_.localConstants)
+      if (local >= 0) return false;
+    return true;
+  }
+
+  // Component `comp` of c[n + int(temp)] per lane, as the interpreter's uniformValue
+  // reads it: indices truncated toward zero (cvttps2dq: NaN and huge values give
+  // INT_MIN, as the interpreter's conversion), API constants below
+  // ExecContext::constantCount, zero elsewhere.
+  V gatherConstant(const Src& s, int comp) {
+    const V address = laneValue(RegFile::Temp, s.relReg, s.relComp & 3);
+    return memo({9, id(address), s.index, uint32_t(comp)}, [&] {
+      x86::Gp ctx = load(offsetof(JitFrame, ctx));
+      x86::Gp count = cc_.newInt32(), base = cc_.newIntPtr();
+      cc_.mov(count, x86::dword_ptr(ctx, int32_t(offsetof(ExecContext, constantCount))));
+      cc_.mov(base, x86::ptr(ctx, int32_t(offsetof(ExecContext, constants))));
+      const V n = splatBits(s.index);  // the integer n
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) {
+        x86::Vec index = newVec(), limit = newVec(), offset = newVec();
+        cc_.vcvttps2dq(index, address.p[h]);
+        cc_.vpaddd(index, index, n.p[h]);
+        cc_.vmovd(limit.xmm(), count);
+        cc_.vpbroadcastd(limit, limit.xmm());
+        // Byte offset index * 16 as (index * 4) scaled by 4: gathers scale by at most 8.
+        cc_.vpslld(offset, index, imm(2));
+        cc_.vxorps(r.p[h], r.p[h], r.p[h]);  // lanes out of range read zero
+        const x86::Mem at = x86::ptr(base, offset, 2, comp * 4);
+        if (wide_) {
+          x86::KReg k = cc_.newKw();
+          cc_.vpcmpud(k, index, limit, imm(1));  // unsigned <: negative indices are out too
+          cc_.k(k).vgatherdps(r.p[h], at);
+        } else {
+          x86::Vec inside = newVec(), minusOne = newVec();
+          cc_.vpcmpgtd(inside, limit, index);  // index < count
+          cc_.vpcmpeqd(minusOne, minusOne, minusOne);
+          cc_.vpcmpgtd(minusOne, index, minusOne);  // index > -1
+          cc_.vpand(inside, inside, minusOne);
+          cc_.vgatherdps(r.p[h], at, inside);
+        }
+      }
+      return r;
+    });
   }
 
   void use(RegFile f, int index) {
@@ -484,6 +538,11 @@ class Generator {
     const Src& s = in.src[i];
     if (fetched_[i]) return loadHalves(fetchedAt_[i].cloneAdjusted(c * kComponentBytes));  // swizzled, modified
     const int comp = (s.swizzle >> (2 * c)) & 3;
+    if (gathered_[i]) {
+      V v = gatherConstant(s, comp);
+      if (s.flags & kSrcClampUnit) v = min(splat(1.0f), max(splat(-1.0f), v));
+      return modify(v, s.mod);
+    }
     if (isLaneFile(s.file)) {
       V v = laneValue(s.file, s.index, comp);
       if (s.mod == SrcMod::None) return v;
@@ -807,6 +866,7 @@ class Generator {
   bool affine_ = false;  // the current instruction's lane sources use affine modifiers
   bool fetched_[3] = {};  // the current instruction's sources read by emitFetch, into:
   x86::Mem fetchedAt_[3];
+  bool gathered_[3] = {};  // … and those gathered natively (gatheredConstant)
   std::map<Key, V> values_;                   // see memo()
   std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
   x86::Gp frame_, temps_, inputs_, outputs_, constants_, immediates_;
