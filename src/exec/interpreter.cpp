@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "exec/jit/jit.h"
+#include "exec/lane_math.h"
 
 namespace refx::exec {
 
@@ -420,17 +421,16 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
         });
         break;
       case Op::Exp2:
-        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = std::exp2(s[0].c[c][l]); });
+        each([&](int c, float* r) { for (int l = 0; l < N; ++l) r[l] = detail::exp2Lane(s[0].c[c][l]); });
         break;
       case Op::Log2:
         each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = std::log2(std::fabs(s[0].c[c][l]));
+          for (int l = 0; l < N; ++l) r[l] = detail::log2Lane(s[0].c[c][l]);
         });
         break;
       case Op::Pow:
-        // D3D pow: |x|^y (pow(0, 0) = 1).
         each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = std::pow(std::fabs(s[0].c[c][l]), s[1].c[c][l]);
+          for (int l = 0; l < N; ++l) r[l] = detail::powLane(s[0].c[c][l], s[1].c[c][l]);
         });
         break;
       case Op::Lrp:
@@ -488,14 +488,7 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
         break;
       case Op::Lit:
         each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) {
-            const float x = s[0].c[0][l], y = s[0].c[1][l];
-            // The power is limited to the 8.8 fixed-point range of the era's hardware.
-            const float w = std::min(std::max(s[0].c[3][l], -127.9961f), 127.9961f);
-            r[l] = c == 0 || c == 3 ? 1.0f
-                   : c == 1         ? (x > 0 ? x : 0.0f)
-                                    : (x > 0 && y > 0 ? std::pow(y, w) : 0.0f);
-          }
+          for (int l = 0; l < N; ++l) r[l] = detail::litLane(c, s[0].c[0][l], s[0].c[1][l], s[0].c[3][l]);
         });
         break;
       case Op::Dist:
@@ -525,15 +518,12 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
       case Op::SinCos:
         mask &= 0x3;
         each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = c == 0 ? std::cos(s[0].c[0][l]) : std::sin(s[0].c[0][l]);
+          for (int l = 0; l < N; ++l) r[l] = detail::sinCosLane(c, s[0].c[0][l]);
         });
         break;
       case Op::ExpP:
         each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) {
-            const float v = s[0].c[0][l], f = std::floor(v);
-            r[l] = c == 0 ? std::exp2(f) : c == 1 ? v - f : c == 2 ? std::exp2(v) : 1.0f;
-          }
+          for (int l = 0; l < N; ++l) r[l] = detail::expPLane(c, s[0].c[0][l]);
         });
         break;
       case Op::Quot:
@@ -989,6 +979,7 @@ static std::shared_ptr<const detail::JitProgram> nativeCode(const Program& progr
   auto jit = detail::jitProgram(program, isa, compiled);
   if (!jit) return nullptr;
   if (compiled) info.compileMicroseconds = jit->compileMicroseconds;
+  info.interpretedInstructions = jit->calledInstructions;
   // Inline code reads registers without bounds checks: every register it addresses
   // must exist (a missing one reads as zero in the interpreter).
   if (int(regs.temps.size()) < jit->tempsUsed || int(regs.inputs.size()) < jit->inputsUsed ||
@@ -1203,6 +1194,14 @@ float applySourceModifier(float x, SrcMod mod) { return applyMod(x, mod); }
 
 Vec4 uniformRegisterValue(const Src& s, int index, const ExecContext& ctx, const Program& p) {
   return uniformValue(s, index, ctx, p);
+}
+
+void fetchSource(const Src& s, const Program& p, const ExecContext& ctx, const BatchRegisters& regs,
+                 float (*out)[kBatchLanes]) {
+  Operand o;
+  fetch(s, regs, ctx, p, out, o);
+  for (int c = 0; c < 4; ++c)
+    if (o.c[c] != out[c]) std::memcpy(out[c], o.c[c], sizeof out[c]);
 }
 
 }  // namespace detail

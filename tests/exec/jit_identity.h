@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -46,6 +47,7 @@ struct Outcome {
   std::string backend;  // what ran the native side ("interpreter": not compiled)
   std::string mismatch;  // empty: identical
   double compileMicroseconds = 0;  // 0: found in the cache
+  int interpretedInstructions = 0;  // run by the interpreter's routine from native code
 };
 
 // Compile times of the programs a test compiled (cache hits left out).
@@ -70,7 +72,18 @@ struct CompileTimes {
 
 struct Ranges {
   float lo = -2.0f, hi = 2.0f;  // inputs, temps and constants
+  bool specialValues = false;   // half the values from kSpecialValues
 };
+
+// Values where libm functions and comparisons take their special cases.
+inline const float kSpecialValues[] = {
+    0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -0.5f, 2.0f, -2.0f, 3.0f, -3.0f, 0.25f,
+    std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+    std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN(),
+    std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(),
+    1e-40f, -1e-40f, std::numeric_limits<float>::min(), std::numeric_limits<float>::max(),
+    -std::numeric_limits<float>::max(), 1e30f, -1e30f, 88.7f, -103.0f, 128.0f, -150.0f, 127.9961f,
+    1e-7f, 100.5f, 1e6f, -1e6f, 3.14159265f, -6.2831853f, 1e10f};
 
 inline std::string compareFile(const char* name, const std::vector<LaneVec4>& a, const std::vector<LaneVec4>& b) {
   for (size_t r = 0; r < a.size(); ++r)
@@ -92,7 +105,11 @@ inline std::string compareFile(const char* name, const std::vector<LaneVec4>& a,
 inline Outcome compare(const Program& program, PrepareOptions::Isa isa, uint32_t seed, Ranges ranges = {},
                        int registerFloor = 0, int boundSamplers = kSamplerCount) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> value(ranges.lo, ranges.hi);
+  std::uniform_real_distribution<float> uniform(ranges.lo, ranges.hi);
+  auto value = [&](std::mt19937& g) {
+    if (ranges.specialValues && g() % 2) return kSpecialValues[g() % std::size(kSpecialValues)];
+    return uniform(g);
+  };
   std::vector<Vec4> constants(kConstBumpEnv + kConstBumpEnvCount);
   for (Vec4& v : constants) v = Vec4(value(rng), value(rng), value(rng), value(rng));
   std::array<std::array<int, 4>, 16> ints{};
@@ -128,6 +145,7 @@ inline Outcome compare(const Program& program, PrepareOptions::Isa isa, uint32_t
   const ProgramBuildInfo info = prepare(program, ctx, jit, native);
   out.backend = info.backend;
   out.compileMicroseconds = info.compileMicroseconds;
+  out.interpretedInstructions = info.interpretedInstructions;
   const uint16_t masks[] = {0xffff, 0x0f0f, 0x8421, 0xfff0, 0x0001};
   for (uint16_t mask : masks) {
     auto fill = [&](std::vector<LaneVec4>& file) {

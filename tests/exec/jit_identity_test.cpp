@@ -193,6 +193,102 @@ TEST(JitIdentity, RandomPrograms) {
   }
 }
 
+// The ops native code runs without the interpreter's routine, inline or through a
+// lane helper sharing the interpreter's libm calls: random programs of them on
+// special values (zeros of both signs, infinities, NaN, denormals, huge values,
+// negative bases for pow), straight and inside flow control.
+TEST(JitIdentity, RandomProgramsOfLaneOpsOnSpecialValues) {
+  const auto isas = availableIsas();
+  if (isas.empty()) GTEST_SKIP() << "no AVX2 on this CPU";
+  static const Op kOps[] = {Op::Exp2, Op::Log2, Op::Pow,  Op::Lit,  Op::ExpP, Op::SinCos, Op::Round,
+                            Op::Dist, Op::Crs,  Op::Sgn,  Op::Quot, Op::SetP, Op::Dsx,    Op::Dsy};
+  std::mt19937 rng(4242);
+  int perOp[std::size(kOps)] = {};
+  for (int n = 0; n < 1200; ++n) {
+    const bool flow = n % 4 == 3;
+    Program p = flow ? randomFlowProgram(rng) : randomShell(rng);
+    if (!flow) p.code.resize(1 + rng() % 8);
+    for (Instr& in : p.code) {
+      if (in.op >= Op::If) continue;
+      if (!flow) in = randomInstruction(rng);
+      const size_t k = rng() % std::size(kOps);
+      in.op = kOps[k];
+      ++perOp[k];
+      in.cmp = uint8_t(rng() % 7);  // 0: always
+    }
+    Ranges ranges;
+    ranges.specialValues = true;
+    if (n % 2) ranges.lo = -300.0f, ranges.hi = 300.0f;
+    for (auto isa : isas) {
+      const Outcome o = compare(p, isa, uint32_t(n), ranges);
+      ASSERT_NE(o.backend, "interpreter");
+      ASSERT_EQ(o.interpretedInstructions, 0) << listProgram(p);
+      ASSERT_EQ(o.mismatch, "") << "program " << n << " (" << isaName(isa) << ")\n" << listProgram(p);
+    }
+  }
+  for (int count : perOp) EXPECT_GT(count, 100);
+}
+
+// Sources native code reads through the interpreter's fetch: c[a0.x + n] (a0 in a
+// temp: truncated, negative, beyond the file, NaN), relative temps, inputs and outputs
+// with their bounds, aL-relative sources inside loops, integer and boolean constants;
+// the rest of the instruction runs inline.
+TEST(JitIdentity, RandomProgramsWithRelativeAndIntegerSources) {
+  const auto isas = availableIsas();
+  if (isas.empty()) GTEST_SKIP() << "no AVX2 on this CPU";
+  std::mt19937 rng(90210);
+  auto pick = [&](int n) { return int(rng() % uint32_t(n)); };
+  int relative = 0, integer = 0;
+  for (int n = 0; n < 1200; ++n) {
+    const bool flow = n % 3 == 2;
+    Program p = flow ? randomFlowProgram(rng) : randomProgram(rng);
+    if (n % 2 == 0) p.localConstants.clear();  // c[a0.x + n] gathered natively
+    for (Instr& in : p.code) {
+      if (in.op >= Op::If) continue;
+      for (int i = 0; i < sourceCount(in.op); ++i) {
+        Src& s = in.src[i];
+        switch (pick(4)) {
+          case 0:
+            s.rel = flow && pick(2) ? RelMode::Loop : RelMode::Temp;
+            s.relReg = uint16_t(pick(4)), s.relComp = uint8_t(pick(4));
+            s.index = uint16_t(pick(s.file == RegFile::Const ? 40 : 4));
+            s.relLo = 0, s.relHi = uint16_t(s.file == RegFile::Output ? 2 : 4);
+            ++relative;
+            break;
+          case 1:
+            s.file = pick(2) ? RegFile::ConstInt : RegFile::ConstBool;
+            s.index = uint16_t(pick(18));  // two beyond the 16 set
+            ++integer;
+            break;
+          default: break;
+        }
+      }
+    }
+    // Texture lookups with such coordinates are left to the interpreter's routine.
+    int interpreted = 0;
+    for (const Instr& in : p.code) {
+      if (!(in.op >= Op::Tex && in.op <= Op::TexLod) && in.op != Op::TexGrad) continue;
+      bool fetched = false;
+      for (int i = 0; i < sourceCount(in.op); ++i)
+        fetched |= in.src[i].rel != RelMode::None || in.src[i].file == RegFile::ConstInt ||
+                   in.src[i].file == RegFile::ConstBool;
+      interpreted += fetched;
+    }
+    Ranges ranges;
+    ranges.specialValues = n % 2 == 1;
+    if (n % 4 == 1) ranges.lo = -40.0f, ranges.hi = 40.0f;
+    if (n % 8 == 2) ranges.lo = -400.0f, ranges.hi = 400.0f;  // beyond the constant file
+    for (auto isa : isas) {
+      const Outcome o = compare(p, isa, uint32_t(n), ranges, 0, n % 3 == 0 ? 1 : kSamplerCount);
+      ASSERT_NE(o.backend, "interpreter") << "program " << n << " (" << isaName(isa) << ")\n" << listProgram(p);
+      ASSERT_EQ(o.interpretedInstructions, interpreted) << listProgram(p);
+      ASSERT_EQ(o.mismatch, "") << "program " << n << " (" << isaName(isa) << ")\n" << listProgram(p);
+    }
+  }
+  EXPECT_GT(relative, 1000);
+  EXPECT_GT(integer, 1000);
+}
+
 // rep 255 { rep 255 { add; mul } }: 255 * (1 + 255 * 3 + 1) instructions, more than
 // kMaxExecutedInstructions, so the run stops inside a native block's range: it must
 // stop where the interpreter stops.

@@ -85,6 +85,9 @@ struct ProgramBuildInfo {
   // Time this call spent compiling native code: 0 when the process-wide cache
   // already held the program (or for the interpreter).
   double compileMicroseconds = 0;
+  // Instructions the native code hands to the interpreter's routine, decoding their
+  // operands as they run (relative addressing, integer and boolean constants …).
+  int interpretedInstructions = 0;
 };
 
 // Decodes `program` once for these registers: operands resolved to lane arrays,

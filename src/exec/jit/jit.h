@@ -69,5 +69,9 @@ float applySourceModifier(float x, SrcMod mod);
 // Value of a uniform source register before swizzle and modifier (Imm, Const with
 // local constants, unit clamp), as the interpreter reads it.
 Vec4 uniformRegisterValue(const Src& s, int index, const ExecContext& ctx, const Program& p);
+// Source `s` (swizzle and modifier applied) into out[component][lane], as the
+// interpreter's routine reads it: relative addressing, integer and boolean constants.
+void fetchSource(const Src& s, const Program& p, const ExecContext& ctx, const BatchRegisters& regs,
+                 float (*out)[kBatchLanes]);
 
 }  // namespace refx::exec::detail

@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "exec/jit/jit.h"
+#include "exec/lane_math.h"
 
 namespace refx::exec::detail {
 
@@ -37,6 +38,18 @@ struct FailOnError : ErrorHandler {
 // Called by generated code: one instruction run by the interpreter.
 void callInstruction(JitFrame* f, uint32_t index) {
   executeInstruction(f->program->code[index], *f->program, *f->ctx, *f->regs);
+}
+
+// Called by generated code: source i of an instruction as the interpreter reads it.
+void fetchSourceLanes(JitFrame* f, uint32_t index, uint32_t i, float* out) {
+  fetchSource(f->program->code[index].src[i], *f->program, *f->ctx, *f->regs,
+              reinterpret_cast<float (*)[kBatchLanes]>(out));
+}
+
+// Sources read through the interpreter's fetch: relative addressing, and the integer
+// and boolean constant files.
+bool fetchedByHelper(const Src& s) {
+  return s.rel != RelMode::None || s.file == RegFile::ConstInt || s.file == RegFile::ConstBool;
 }
 
 bool isLaneFile(RegFile f) { return f == RegFile::Temp || f == RegFile::Input || f == RegFile::Output; }
@@ -92,7 +105,10 @@ class Generator {
     for (size_t i = begin_; i < end_; ++i) {
       const Instr& in = program_.code[i];
       named[int(in.dst.file)] = true;
-      for (const Src& src : in.src) named[int(src.file)] = true;
+      for (const Src& src : in.src) {
+        named[int(src.file)] = true;
+        if (src.rel == RelMode::Temp) named[int(RegFile::Temp)] = true;  // the address register
+      }
     }
     if (named[int(RegFile::Temp)]) temps_ = load(offsetof(JitFrame, temps));
     if (named[int(RegFile::Input)]) inputs_ = load(offsetof(JitFrame, inputs));
@@ -117,13 +133,15 @@ class Generator {
       case Op::Mov: case Op::Add: case Op::Sub: case Op::Mul: case Op::Mad: case Op::Dp3:
       case Op::Dp4: case Op::Dp2Add: case Op::Min: case Op::Max: case Op::Slt: case Op::Sge:
       case Op::Lrp: case Op::Cmp: case Op::Cnd: case Op::Frc: case Op::Floor: case Op::Abs:
-      case Op::Rcp: case Op::Rsq: case Op::Nrm: case Op::Kill: break;
+      case Op::Rcp: case Op::Rsq: case Op::Nrm: case Op::Kill: case Op::Round: case Op::Dist: case Op::Crs:
+      case Op::Sgn: case Op::Quot: case Op::SetP: case Op::Dsx: case Op::Dsy: case Op::Exp2: case Op::Log2:
+      case Op::Pow: case Op::Lit: case Op::ExpP: case Op::SinCos: break;
       default: return false;
     }
     if (in.op != Op::Kill && (in.dst.rel != RelMode::None || !isLaneFile(in.dst.file))) return false;
     for (int i = 0; i < sourceCount(in.op); ++i) {
       const Src& s = in.src[i];
-      if (s.rel != RelMode::None) return false;
+      if (fetchedByHelper(s)) continue;
       if (!isLaneFile(s.file) && s.file != RegFile::Const && s.file != RegFile::Imm) return false;
     }
     return true;
@@ -146,6 +164,7 @@ class Generator {
 
   void emitInstruction(uint32_t index) {
     const Instr& in = program_.code[index];
+    for (int i = 0; i < 3; ++i) fetched_[i] = gathered_[i] = false;
     if (sampledDirectly(in)) {
       emitTex(index);
       return;
@@ -158,6 +177,15 @@ class Generator {
     affine_ = !generic_ && affineModifierOp(in.op);
     for (int i = 0; i < sourceCount(in.op); ++i) {
       const Src& s = in.src[i];
+      if (fetchedByHelper(s)) {
+        // The interpreter's routine runs such instructions: modifiers through applyMod.
+        affine_ = false;
+        gathered_[i] = gatheredConstant(s);
+        fetched_[i] = !gathered_[i];
+        if (gathered_[i]) use(RegFile::Temp, s.relReg);
+        else emitFetch(index, i);
+        continue;
+      }
       float k, o;
       if (isLaneFile(s.file) && s.mod != SrcMod::None && !affineMod(s.mod, k, o)) affine_ = false;
       if (isLaneFile(s.file)) use(s.file, s.index);
@@ -184,8 +212,87 @@ class Generator {
       case Op::Rsq: emitRsq(in); break;
       case Op::Nrm: emitNrm(in); break;
       case Op::Kill: emitKill(in); break;
+      case Op::Round: emitRound(in); break;
+      case Op::Dist: emitDist(in); break;
+      case Op::Crs: emitCrs(in); break;
+      case Op::Sgn: emitSgn(in); break;
+      case Op::Quot: emitQuot(in); break;
+      case Op::SetP: emitSetP(in); break;
+      case Op::Dsx: case Op::Dsy: emitDerivative(in); break;
+      case Op::Exp2: emitLaneHelper(in, exp2Lanes); break;
+      case Op::Log2: emitLaneHelper(in, log2Lanes); break;
+      case Op::Pow: emitLaneHelper(in, powLanes); break;
+      case Op::Lit: emitLaneHelper(in, litLanes); break;
+      case Op::ExpP: emitLaneHelper(in, expPLanes); break;
+      case Op::SinCos: emitLaneHelper(in, sinCosLanes); break;
       default: break;
     }
+  }
+
+  // Source i of instruction `index` into a stack buffer by the interpreter's fetch
+  // (before any result of the instruction is written).
+  void emitFetch(uint32_t index, int i) {
+    fetchedAt_[i] = cc_.newStack(4 * kComponentBytes, 64);
+    forget();
+    x86::Gp out = cc_.newIntPtr();
+    cc_.lea(out, fetchedAt_[i]);
+    InvokeNode* call;
+    cc_.invoke(&call, imm(reinterpret_cast<void*>(&fetchSourceLanes)),
+               FuncSignatureT<void, JitFrame*, uint32_t, uint32_t, float*>(CallConvId::kHost));
+    call->setArg(0, frame_);
+    call->setArg(1, imm(index));
+    call->setArg(2, imm(i));
+    call->setArg(3, out);
+    forget();
+  }
+
+  // c[a0.x + n] (a0 in a temp) read natively when the program defines no local
+  // constant (which would override the API's at some indices).
+  bool gatheredConstant(const Src& s) const {
+    if (s.rel != RelMode::Temp || s.file != RegFile::Const) return false;
+    for (const auto local : program_.localConstants)
+      if (local >= 0) return false;
+    return true;
+  }
+
+  // Component `comp` of c[n + int(temp)] per lane, as the interpreter's uniformValue
+  // reads it: indices truncated toward zero (cvttps2dq: NaN and huge values give
+  // INT_MIN, as the interpreter's conversion), API constants below
+  // ExecContext::constantCount, zero elsewhere.
+  V gatherConstant(const Src& s, int comp) {
+    const V address = laneValue(RegFile::Temp, s.relReg, s.relComp & 3);
+    return memo({9, id(address), s.index, uint32_t(comp)}, [&] {
+      x86::Gp ctx = load(offsetof(JitFrame, ctx));
+      x86::Gp count = cc_.newInt32(), base = cc_.newIntPtr();
+      cc_.mov(count, x86::dword_ptr(ctx, int32_t(offsetof(ExecContext, constantCount))));
+      cc_.mov(base, x86::ptr(ctx, int32_t(offsetof(ExecContext, constants))));
+      const V n = splatBits(s.index);  // the integer n
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) {
+        x86::Vec index = newVec(), limit = newVec(), offset = newVec();
+        cc_.vcvttps2dq(index, address.p[h]);
+        cc_.vpaddd(index, index, n.p[h]);
+        cc_.vmovd(limit.xmm(), count);
+        cc_.vpbroadcastd(limit, limit.xmm());
+        // Byte offset index * 16 as (index * 4) scaled by 4: gathers scale by at most 8.
+        cc_.vpslld(offset, index, imm(2));
+        cc_.vxorps(r.p[h], r.p[h], r.p[h]);  // lanes out of range read zero
+        const x86::Mem at = x86::ptr(base, offset, 2, comp * 4);
+        if (wide_) {
+          x86::KReg k = cc_.newKw();
+          cc_.vpcmpud(k, index, limit, imm(1));  // unsigned <: negative indices are out too
+          cc_.k(k).vgatherdps(r.p[h], at);
+        } else {
+          x86::Vec inside = newVec(), minusOne = newVec();
+          cc_.vpcmpgtd(inside, limit, index);  // index < count
+          cc_.vpcmpeqd(minusOne, minusOne, minusOne);
+          cc_.vpcmpgtd(minusOne, index, minusOne);  // index > -1
+          cc_.vpand(inside, inside, minusOne);
+          cc_.vgatherdps(r.p[h], at, inside);
+        }
+      }
+      return r;
+    });
   }
 
   void use(RegFile f, int index) {
@@ -375,7 +482,8 @@ class Generator {
     });
   }
   // compare(a, b) ? t : f with a vcmpps predicate (ordered, NaN false).
-  static constexpr int kEqual = 0x00, kLess = 0x01, kGreaterEqual = 0x0D, kGreater = 0x0E;
+  static constexpr int kEqual = 0x00, kLess = 0x01, kLessEqual = 0x02, kNotEqual = 0x04, kGreaterEqual = 0x0D,
+                       kGreater = 0x0E;
   V select(int predicate, const V& a, const V& b, const V& t, const V& f) {
     return memo({5, uint32_t(predicate), id(a), id(b), id(t), id(f)}, [&] { return selectNew(predicate, a, b, t, f); });
   }
@@ -428,7 +536,13 @@ class Generator {
   // interpreter applies them.
   V source(const Instr& in, int i, int c) {
     const Src& s = in.src[i];
+    if (fetched_[i]) return loadHalves(fetchedAt_[i].cloneAdjusted(c * kComponentBytes));  // swizzled, modified
     const int comp = (s.swizzle >> (2 * c)) & 3;
+    if (gathered_[i]) {
+      V v = gatherConstant(s, comp);
+      if (s.flags & kSrcClampUnit) v = min(splat(1.0f), max(splat(-1.0f), v));
+      return modify(v, s.mod);
+    }
     if (isLaneFile(s.file)) {
       V v = laneValue(s.file, s.index, comp);
       if (s.mod == SrcMod::None) return v;
@@ -582,6 +696,138 @@ class Generator {
       if (in.dst.mask >> c & 1) r[c] = mul(source(in, 0, c), k);
     store(in, r);
   }
+  // nearbyint: the MXCSR rounding mode, as the interpreter's.
+  void emitRound(const Instr& in) { perComponent(in, [&](const V* s) { return round(s[0], 4); }); }
+  // (1, s0.y * s1.y, s0.z, s1.w)
+  void emitDist(const Instr& in) {
+    V r[4];
+    if (in.dst.mask & 1) r[0] = splat(1.0f);
+    if (in.dst.mask & 2) r[1] = mul(source(in, 0, 1), source(in, 1, 1));
+    if (in.dst.mask & 4) r[2] = source(in, 0, 2);
+    if (in.dst.mask & 8) r[3] = source(in, 1, 3);
+    store(in, r);
+  }
+  // xyz only: s0[i] * s1[j] - s0[j] * s1[i] with i, j the next two components.
+  void emitCrs(const Instr& in) {
+    Instr xyz = in;
+    xyz.dst.mask &= 0x7;
+    V r[4];
+    for (int c = 0; c < 3; ++c) {
+      if (!(xyz.dst.mask >> c & 1)) continue;
+      const int i = (c + 1) % 3, j = (c + 2) % 3;
+      r[c] = sub(mul(source(in, 0, i), source(in, 1, j)), mul(source(in, 0, j), source(in, 1, i)));
+    }
+    store(xyz, r);
+  }
+  // v < 0 ? -1 : v > 0 ? 1 : 0 (NaN and -0: 0).
+  void emitSgn(const Instr& in) {
+    perComponent(in, [&](const V* s) {
+      const V zero = splat(0.0f);
+      return select(kLess, s[0], zero, splat(-1.0f), select(kGreater, s[0], zero, splat(1.0f), zero));
+    });
+  }
+  // s1 == 0 ? 1 : s0 / s1
+  void emitQuot(const Instr& in) {
+    perComponent(in, [&](const V* s) {
+      return select(kEqual, s[1], splat(0.0f), splat(1.0f), div(s[0], s[1]));
+    });
+  }
+  // (s0 CMP s1) ? 1 : 0 with compare()'s predicates: != is true for NaN, the others false.
+  void emitSetP(const Instr& in) {
+    static constexpr int kPredicate[] = {-1, kGreater, kEqual, kGreaterEqual, kLess, kNotEqual, kLessEqual};
+    const int predicate = size_t(in.cmp) < std::size(kPredicate) ? kPredicate[in.cmp] : -1;
+    perComponent(in, [&](const V* s) {
+      if (predicate < 0) return splat(1.0f);  // always
+      return select(predicate, s[0], s[1], splat(1.0f), splat(0.0f));
+    });
+  }
+  // Lane l = quad * 4 + (y & 1) * 2 + (x & 1): s0[l | bit] - s0[l & ~bit], lanes
+  // permuted within each quad (a 128-bit lane), bit 1 for dsx, 2 for dsy.
+  void emitDerivative(const Instr& in) {
+    const bool x = in.op == Op::Dsx;
+    const uint32_t high = x ? 0xF5 : 0xEE, low = x ? 0xA0 : 0x44;  // [1,1,3,3] [0,0,2,2] / [2,3,2,3] [0,1,0,1]
+    perComponent(in, [&](const V* s) { return sub(permute(s[0], high), permute(s[0], low)); });
+  }
+  V permute(const V& a, uint32_t pattern) {
+    return memo({8, pattern, id(a)}, [&] {
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) cc_.vpermilps(r.p[h], a.p[h], imm(pattern));
+      return r;
+    });
+  }
+
+  // Ops computed with libm (exp2, log2, pow, lit, expp, sincos): the lane helper of
+  // lane_math.cpp, called with pointers to its operands (a register read in place
+  // when unmodified, else the source computed into a stack buffer) and to its result
+  // (the destination component itself for per-component ops without result
+  // modifiers that write no source, else a buffer stored with the modifiers).
+  void emitLaneHelper(const Instr& in, LaneHelper fn) {
+    const bool perComp = in.op == Op::Exp2 || in.op == Op::Log2 || in.op == Op::Pow;
+    const uint8_t mask = in.op == Op::SinCos ? in.dst.mask & 0x3 : in.dst.mask;
+    if (mask == 0) return;
+    const int nsrc = sourceCount(in.op);
+    bool alias = false;
+    for (int i = 0; i < nsrc; ++i) alias |= in.src[i].file == in.dst.file && in.src[i].index == in.dst.index;
+    const bool direct = perComp && !alias && in.shift == 0 && !in.saturate && !in.clamp && !in.quantize;
+    // The (source, component) operands of each call: one call per written component
+    // or one for the instruction.
+    struct Call {
+      int operand[3][2];  // source, component (-1: none)
+      int component;      // result component (-1: all of mask)
+    };
+    std::vector<Call> calls;
+    if (perComp) {
+      for (int c = 0; c < 4; ++c)
+        if (mask >> c & 1) calls.push_back({{{0, c}, {nsrc > 1 ? 1 : -1, c}, {-1, 0}}, c});
+    } else if (in.op == Op::Lit) {
+      calls.push_back({{{0, 0}, {0, 1}, {0, 3}}, -1});
+    } else {
+      calls.push_back({{{0, 0}, {-1, 0}, {-1, 0}}, -1});
+    }
+    const x86::Mem operands = cc_.newStack(12 * kComponentBytes, 64);
+    const x86::Mem result = cc_.newStack(4 * kComponentBytes, 64);
+    bool buffered[3][4] = {};
+    for (const Call& call : calls)  // every source read before a result is written
+      for (const auto& o : call.operand) {
+        if (o[0] < 0) continue;
+        const Src& s = in.src[o[0]];
+        if ((isLaneFile(s.file) && s.mod == SrcMod::None && !fetched_[o[0]]) || buffered[o[0]][o[1]]) continue;
+        put(operands, o[0] * 4 + o[1], source(in, o[0], o[1]));
+        buffered[o[0]][o[1]] = true;
+      }
+    forget();
+    for (const Call& call : calls) {
+      x86::Gp args[4];
+      for (int k = 0; k < 3; ++k) {
+        const auto& o = call.operand[k];
+        args[k] = cc_.newIntPtr();
+        if (o[0] < 0) {
+          cc_.xor_(args[k], args[k]);
+          continue;
+        }
+        const Src& s = in.src[o[0]];
+        if (buffered[o[0]][o[1]]) cc_.lea(args[k], operands.cloneAdjusted((o[0] * 4 + o[1]) * kComponentBytes));
+        else cc_.lea(args[k], lane(s.file, s.index, (s.swizzle >> (2 * o[1])) & 3, 0));
+      }
+      args[3] = cc_.newIntPtr();
+      if (direct) cc_.lea(args[3], lane(in.dst.file, in.dst.index, call.component, 0));
+      else cc_.lea(args[3], result.cloneAdjusted(std::max(call.component, 0) * kComponentBytes));
+      InvokeNode* node;
+      cc_.invoke(&node, imm(reinterpret_cast<void*>(fn)),
+                 FuncSignatureT<void, const float*, const float*, const float*, float*, uint32_t>(CallConvId::kHost));
+      for (int k = 0; k < 4; ++k) node->setArg(uint32_t(k), args[k]);
+      node->setArg(4, imm(mask));
+    }
+    forget();
+    if (direct) return;
+    Instr written = in;
+    written.dst.mask = mask;
+    V r[4];
+    for (int c = 0; c < 4; ++c)
+      if (mask >> c & 1) r[c] = loadHalves(result.cloneAdjusted(c * kComponentBytes));
+    store(written, r);
+  }
+
   // Lanes with a masked component below zero leave laneMask.
   void emitKill(const Instr& in) {
     x86::Gp killed = cc_.newUInt32();
@@ -618,6 +864,9 @@ class Generator {
   const size_t begin_, end_;
   const bool generic_;
   bool affine_ = false;  // the current instruction's lane sources use affine modifiers
+  bool fetched_[3] = {};  // the current instruction's sources read by emitFetch, into:
+  x86::Mem fetchedAt_[3];
+  bool gathered_[3] = {};  // … and those gathered natively (gatheredConstant)
   std::map<Key, V> values_;                   // see memo()
   std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
   x86::Gp frame_, temps_, inputs_, outputs_, constants_, immediates_;
