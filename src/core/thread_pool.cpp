@@ -1,10 +1,33 @@
 #include "refx/core/thread_pool.h"
 
 #include <algorithm>
+#include <chrono>
 
 namespace refx {
 
 namespace {
+
+// How long a thread polls for the next call (a worker) or for the workers to finish (the
+// caller) before it sleeps on a condition variable. Waking a sleeping thread can cost
+// milliseconds (an idle virtual CPU, the scheduler's wake-up preemption): more than a
+// draw's shading, and a draw's calls come a few microseconds apart.
+constexpr auto kSpinTime = std::chrono::microseconds(200);
+
+// Polls `ready` for at most kSpinTime; true once it holds.
+template <typename Ready>
+bool spinUntil(Ready ready) {
+  const auto deadline = std::chrono::steady_clock::now() + kSpinTime;
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (ready()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+    }
+    if (std::chrono::steady_clock::now() >= deadline) return ready();
+  }
+}
+
 int resolveThreads(int threads) {
   return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
@@ -70,6 +93,7 @@ void ThreadPool::runItems(int threadIndex) {
 void ThreadPool::workerLoop(int threadIndex) {
   uint64_t seen = 0;
   for (;;) {
+    spinUntil([&] { return stop_.load() || generation_.load() != seen; });
     {
       std::unique_lock lock(mutex_);
       wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
@@ -107,6 +131,7 @@ void ThreadPool::parallelFor(size_t count, const std::function<void(size_t, int)
   }
   wake_.notify_all();
   runItems(0);
+  spinUntil([&] { return busy_.load() == 0 && allTaken(); });
   std::unique_lock lock(mutex_);
   // Workers that woke late find no items left and finish at once.
   done_.wait(lock, [&] { return busy_ == 0 && allTaken(); });

@@ -48,9 +48,10 @@ class ThreadPool {
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   const std::function<void(size_t, int)>* job_ = nullptr;
-  int busy_ = 0;
-  uint64_t generation_ = 0;
-  bool stop_ = false;
+  // Changed under mutex_; atomic so that the threads can also poll them while they spin.
+  std::atomic<int> busy_{0};
+  std::atomic<uint64_t> generation_{0};
+  std::atomic<bool> stop_{false};
 };
 
 }  // namespace refx
