@@ -9,6 +9,8 @@
 
 #include "ff_pixel.h"
 #include "output_merger.h"
+#include "raster_interpolate.h"
+#include "refx/core/cpu_features.h"
 #include "refx/exec/lower.h"
 
 namespace refx::pipeline {
@@ -131,8 +133,11 @@ uint16_t coverage(const Primitive& p, const EdgeWalk& walk, const int64_t* e0, i
 
 struct TileWorker {
   exec::BatchRegisters regs;
+  std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations, in order
+  InterpolateInputsFn interpolateInputs = nullptr;
   alignas(64) float z[N];
   alignas(64) float invW[N];
+  alignas(64) float w[N];  // 1 / invW
 };
 
 // Eight lanes as one value (GCC/Clang vector extensions): interpolation is vectorised
@@ -159,11 +164,24 @@ inline void evalPlane(const float* pl, const v8f (&fx)[2], const v8f (&fy)[2],
   }
 }
 
+void interpolateInputsAvx2(const float* planes, const InputTarget* targets, size_t count, float ox,
+                           float oy, const float* invW, float* w) {
+  v8f fx[2], fy[2], wv[2];
+  for (int h = 0; h < 2; ++h) {
+    fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
+    fy[h] = bcast(oy) + load8(kLaneYf + 8 * h);
+    wv[h] = bcast(1.0f) / load8(invW + 8 * h);
+    store8(w + 8 * h, wv[h]);
+  }
+  for (size_t i = 0; i < count; ++i, planes += 3)
+    evalPlane(planes, fx, fy, targets[i].flat ? nullptr : wv, targets[i].lanes);
+}
+
 void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_t mask,
                 TileWorker& w, uint64_t& shaded) {
   const float* pl = d.planes.data() + p.planeOffset;
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
-  v8f fx[2], fy[2], wv[2];
+  v8f fx[2], fy[2];
   for (int h = 0; h < 2; ++h) {
     fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
     fy[h] = bcast(oy) + load8(kLaneYf + 8 * h);
@@ -188,12 +206,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
     mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, w.z, d.depthWrite);
     if (!mask) return;
   }
-  for (int h = 0; h < 2; ++h) wv[h] = one / load8(w.invW + 8 * h);
-  const float* ip = pl + 6;
-  for (const InterpolatedInput& in : d.inputs) {
-    evalPlane(ip, fx, fy, in.flat ? nullptr : wv, w.regs.inputs[in.input].c[in.component]);
-    ip += 3;
-  }
+  w.interpolateInputs(pl + 6, w.inputTargets.data(), w.inputTargets.size(), ox, oy, w.invW, w.w);
   if (d.usesPosition) {
     auto& pos = w.regs.inputs[kPixelInPosition];
     // The position's z is the interpolated z, also when the depth buffer holds w.
@@ -202,7 +215,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       pos.c[0][l] = float(bx + kLaneX[l]);
       pos.c[1][l] = float(by + kLaneY[l]);
       if (!d.wBuffer) pos.c[2][l] = w.z[l];
-      pos.c[3][l] = wv[l / 8][l % 8];
+      pos.c[3][l] = w.w[l];
     }
   }
   if (d.usesFace) {
@@ -252,6 +265,10 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
 
 }  // namespace
 
+InterpolateInputsFn chooseInterpolateInputs() {
+  return activeIsa() == CpuIsa::Avx512 ? interpolateInputsAvx512 : interpolateInputsAvx2;
+}
+
 void fillColorRow(uint8_t* row, int x0, int x1, uint32_t argb, bool isFloat) {
   if (!isFloat) {
     std::fill_n(reinterpret_cast<uint32_t*>(row) + x0, x1 - x0, argb);
@@ -300,6 +317,9 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
     const exec::ProgramBuildInfo info =
         exec::prepare(*draw.pixelProgram, draw.execContext, w.regs, draw.prepareOptions);
     if (draw.pixelBuild && &w == &workers[0]) *draw.pixelBuild = info;
+    w.interpolateInputs = chooseInterpolateInputs();
+    for (const InterpolatedInput& in : draw.inputs)
+      w.inputTargets.push_back({w.regs.inputs[in.input].c[in.component], in.flat});
   }
   std::vector<uint64_t> shaded(threads, 0);
   pool.parallelFor(busy.size(), [&](size_t i, int thread) {

@@ -1,0 +1,78 @@
+// The batch input interpolation (pipeline/raster_interpolate.h) against its formula,
+// evaluated lane by lane in scalar floats: both instruction-set variants must give the
+// formula's values bit for bit.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "pipeline/raster_interpolate.h"
+#include "refx/core/cpu_features.h"
+
+namespace refx::pipeline {
+namespace {
+
+struct Case {
+  std::vector<float> planes;  // 3 per input
+  std::vector<bool> flat;
+  float ox, oy;
+  float invW[kBatchLanes];
+};
+
+Case randomCase(std::mt19937& rng, int inputs) {
+  std::uniform_real_distribution<float> value(-300.0f, 300.0f), offset(-70.0f, 70.0f), rhw(0.01f, 2.0f);
+  Case c;
+  for (int i = 0; i < 3 * inputs; ++i) c.planes.push_back(value(rng) / float(1 + i % 3 * 97));
+  for (int i = 0; i < inputs; ++i) c.flat.push_back(i % 3 == 2);
+  c.ox = offset(rng) + 0.5f;
+  c.oy = offset(rng) - 0.25f;
+  for (float& v : c.invW) v = rhw(rng);
+  return c;
+}
+
+// A batch's lanes: four 2x2 quads, top-left, top-right, bottom-left, bottom-right, each
+// in reading order.
+constexpr int kLaneX[kBatchLanes] = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
+constexpr int kLaneY[kBatchLanes] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
+
+// value = base + dx*(ox + laneX) + dy*(oy + laneY), left to right, times 1/invW unless flat.
+void checkVariant(InterpolateInputsFn fn, const Case& c) {
+  const size_t n = c.flat.size();
+  std::vector<std::array<float, kBatchLanes>> out(n);
+  std::vector<InputTarget> targets;
+  for (size_t i = 0; i < n; ++i) targets.push_back({out[i].data(), bool(c.flat[i])});
+  alignas(64) float w[kBatchLanes];
+  fn(c.planes.data(), targets.data(), n, c.ox, c.oy, c.invW, w);
+  for (int l = 0; l < kBatchLanes; ++l) {
+    const float fx = c.ox + float(kLaneX[l]), fy = c.oy + float(kLaneY[l]);
+    const float wl = 1.0f / c.invW[l];
+    EXPECT_EQ(std::memcmp(&w[l], &wl, 4), 0) << "w lane " << l;
+    for (size_t i = 0; i < n; ++i) {
+      const float* p = &c.planes[3 * i];
+      float v = p[0] + p[1] * fx;
+      v = v + p[2] * fy;
+      if (!c.flat[i]) v = v * wl;
+      EXPECT_EQ(std::memcmp(&out[i][l], &v, 4), 0) << "input " << i << " lane " << l << ": " << out[i][l] << " vs " << v;
+    }
+  }
+}
+
+TEST(RasterInterpolate, BothVariantsGiveTheFormulasValues) {
+  std::mt19937 rng(7);
+  const CpuIsa saved = activeIsa();
+  for (int round = 0; round < 50; ++round) {
+    const Case c = randomCase(rng, 1 + round % 9);
+    setActiveIsa(CpuIsa::Avx2);
+    checkVariant(chooseInterpolateInputs(), c);
+    if (detectedIsa() == CpuIsa::Avx512) {
+      setActiveIsa(CpuIsa::Avx512);
+      ASSERT_EQ(chooseInterpolateInputs(), &interpolateInputsAvx512);
+      checkVariant(chooseInterpolateInputs(), c);
+    }
+  }
+  setActiveIsa(saved);
+}
+
+}  // namespace
+}  // namespace refx::pipeline
