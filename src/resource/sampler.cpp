@@ -604,12 +604,17 @@ inline void loadQuads8(const uint32_t* texels, v8i a, int w, v8u& p00, v8u& p10,
 #if defined(__GNUC__)
   asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
 #endif
+  // The bottom row from its own base register: both loads of a lane take its index as
+  // is, with no address arithmetic per lane (the compiler would otherwise add w to it).
+  const uint32_t* below = texels + w;
+#if defined(__GNUC__)
+  asm("" : "+r"(below));
+#endif
   __m128i q[8];
   for (int l = 0; l < 8; ++l) {
-    const uint32_t* t = texels + ix[l];
-    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(t));
+    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texels + ix[l]));
     q[l] = _mm_castpd_si128(
-        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(t + w)));
+        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(below + ix[l])));
   }
   // q[l] = t00 t10 t01 t11 of lane l. Lanes l and l + 4 share a register (one per
   // 128-bit half), then a 4x4 transpose within each half gives the four texel vectors.
@@ -735,17 +740,21 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
     } else {
       // Both halves' texels are fetched before either is filtered, so that all the
       // loads are in flight together (the filter waits on their latency).
-      const v8i r1 = y1 * w;
       v8u p00, p10, p01, p11;
       const bool pairs = pairs8(x0, x1);
-      if (pairs && allDiffer(r0, r1, w)) {  // the 2x2 texels are a block in memory
+      // y1 = y0 + 1 is r1 = r0 + w (a level has fewer than 2^31 texels: no product
+      // wraps): the 2x2 texels are a block in memory, and r1 is not needed.
+      if (pairs && allDiffer(y0, y1, 1)) {
         loadQuads8(texels, r0 + x0, w, p00, p10, p01, p11);
-      } else if (!pairs) {
-        p00 = load8(texels, r0 + x0), p10 = load8(texels, r0 + x1);
-        p01 = load8(texels, r1 + x0), p11 = load8(texels, r1 + x1);
       } else {
-        loadPairs8(texels, r0 + x0, p00, p10);
-        loadPairs8(texels, r1 + x0, p01, p11);
+        const v8i r1 = y1 * w;
+        if (!pairs) {
+          p00 = load8(texels, r0 + x0), p10 = load8(texels, r0 + x1);
+          p01 = load8(texels, r1 + x0), p11 = load8(texels, r1 + x1);
+        } else {
+          loadPairs8(texels, r0 + x0, p00, p10);
+          loadPairs8(texels, r1 + x0, p01, p11);
+        }
       }
       fetched[k / 8] = {p00, p10, p01, p11, fixedX, fixedY};
     }
@@ -1113,9 +1122,38 @@ struct Fast2D {
   }
 };
 
+// A batch whose quads chose different levels or filters (keys: (level << 1) | linear per
+// quad): one kernel call per key, each lane taken from its quad's. Lanes are independent
+// in the kernel, so this is what samplePass gives. False (nothing written) when a level
+// is not for the kernel.
+[[gnu::noinline]] bool sample2DMixed(const Fast2D& f, const float* const c[3], uint32_t mask,
+                                     const int keys[4], float out[4][kLanes]) {
+  const SampleLevel* lv[4];
+  for (int q = 0; q < 4; ++q) {
+    lv[q] = f.levels ? f.levels[keys[q] >> 1] : &f.tex->sampleLevel(0, keys[q] >> 1);
+    if (!lv[q] || (!f.levels && !fastLevel(*lv[q], *f.st, f.addr))) return false;
+  }
+  uint32_t done = 0;  // quads sampled
+  for (int q = 0; q < 4; ++q) {
+    if (done >> q & 1) continue;
+    uint32_t lanes = 0;
+    for (int r = q; r < 4; ++r)
+      if (keys[r] == keys[q]) done |= 1u << r, lanes |= 0xfu << (4 * r);
+    const Kernel2D kernel = f.kernels[keys[q] & 1];
+    float tmp[4][kLanes];
+    (kernel ? kernel : selectKernel2D(f.addr[0], f.addr[1], keys[q] & 1))(*lv[q], c[0], c[1], tmp);
+    for (int ch = 0; ch < 4; ++ch)
+      for (int l = 0; l < kLanes; ++l)
+        if (lanes >> l & 1) out[ch][l] = tmp[ch][l];
+  }
+  if (mask != 0xffff) clearLanes(out, mask);
+  return true;
+}
+
 // λ per quad and the level it selects, with the operations of computeLambda and
-// planLevels for a 2D texture (MIPFILTER NONE or POINT); when all four quads agree,
-// samples the batch with one kernel call. Returns false to leave it to the general path.
+// planLevels for a 2D texture (MIPFILTER NONE or POINT); samples the batch with one
+// kernel call when all four quads agree, one per level and filter otherwise. Returns
+// false to leave it to the general path.
 [[gnu::always_inline]] inline bool sample2DUniform(const Fast2D& f, const float* const c[3],
                                                   uint32_t mask, float out[4][kLanes]) {
   const SamplerState& st = *f.st;
@@ -1140,7 +1178,8 @@ struct Fast2D {
   const v4f lb = __builtin_shufflevector(sq[0], sq[1], 2, 6, 10, 14);  // b²
   const v4f ms = la < lb ? lb : la;  // std::max(la, lb)
   int key = -1;
-  bool classified = false;
+  int keys[4];  // per quad
+  bool classified = false, mixed = false;
   // All four quads at once when every ρ² has the exponent form (see below).
   typedef uint32_t v4u __attribute__((vector_size(16)));
   typedef int32_t v4i __attribute__((vector_size(16)));
@@ -1169,7 +1208,10 @@ struct Fast2D {
     level = level > last ? v4i{} + last : level;
     if (mipNone) level = v4i{};
     const v4i k = (level << 1) | linear;
-    if (!all4(k == __builtin_shufflevector(k, k, 0, 0, 0, 0))) return false;
+    if (!all4(k == __builtin_shufflevector(k, k, 0, 0, 0, 0))) {
+      for (int q = 0; q < 4; ++q) keys[q] = k[q];
+      return sample2DMixed(f, c, mask, keys, out);
+    }
     key = k[0];
     classified = true;
   }
@@ -1193,9 +1235,10 @@ struct Fast2D {
       level = mipNone ? 0 : int(std::floor(clampFinite(lam, float(first), float(last)) + 0.5f));
     }
     const int k = (level << 1) | linear;
-    if (key >= 0 && k != key) return false;
-    key = k;
+    mixed |= key >= 0 && k != key;
+    key = keys[q] = k;
   }
+  if (mixed) return sample2DMixed(f, c, mask, keys, out);
   const SampleLevel* lv = f.levels ? f.levels[key >> 1] : &f.tex->sampleLevel(0, key >> 1);
   if (!lv || (!f.levels && !fastLevel(*lv, st, f.addr))) return false;
   const Kernel2D kernel = f.kernels[key & 1];
@@ -1374,7 +1417,8 @@ namespace {
 [[gnu::always_inline]] inline bool samplePrepared(const PreparedPlan* p, const float* u,
                                                   const float* v, const float* w,
                                                   bool derivatives, uint16_t laneMask,
-                                                  float out[4][kBatchLanes]) {
+                                                  float out[4][kBatchLanes],
+                                                  bool tryUniform = true) {
   if (!p) return false;
   const float* c[3] = {u ? u : kZeros, v ? v : kZeros, w ? w : kZeros};
   if (p->single) {
@@ -1383,8 +1427,21 @@ namespace {
     return true;
   }
   if (!p->needLambda || !derivatives || p->st.mipFilter == TextureFilter::Linear) return false;
-  return (p->uniform && p->uniform(p->uniformPlan, c[0], c[1], laneMask, out)) ||
+  return (tryUniform && p->uniform && p->uniform(p->uniformPlan, c[0], c[1], laneMask, out)) ||
          sample2DUniform(p->fast, c, laneMask, out);
+}
+
+// sampleImplicit past the batch kernel (tried and declined, or not there): out of line,
+// so that the common call does not set up this path's frame.
+[[gnu::noinline]] void sampleImplicitRest(const Texture& tex, const SamplerState& state,
+                                          const PreparedPlan* p, const float* u, const float* v,
+                                          const float* w, uint16_t laneMask,
+                                          float out[4][kBatchLanes]) {
+  if (samplePrepared(p, u, v, w, true, laneMask, out, false)) return;
+  SampleRequest req;
+  req.u = u, req.v = v, req.w = w;
+  req.laneMask = laneMask;
+  sampleImpl(tex, state, req, out, true);
 }
 
 }  // namespace
@@ -1397,12 +1454,12 @@ void PreparedSampler::sample(const SampleRequest& req, float out[4][kBatchLanes]
 
 void PreparedSampler::sampleImplicit(const float* u, const float* v, const float* w,
                                      uint16_t laneMask, float out[4][kBatchLanes]) const {
-  if (samplePrepared(static_cast<const PreparedPlan*>(plan_.get()), u, v, w, true, laneMask, out))
+  // samplePrepared's order: a plan with the batch kernel has no `single` and takes λ
+  // from derivatives without mip blending, so the kernel comes first.
+  const auto* p = static_cast<const PreparedPlan*>(plan_.get());
+  if (p && p->uniform && p->uniform(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out))
     return;
-  SampleRequest req;
-  req.u = u, req.v = v, req.w = w;
-  req.laneMask = laneMask;
-  sampleImpl(*tex_, state_, req, out, true);
+  sampleImplicitRest(*tex_, state_, p, u, v, w, laneMask, out);
 }
 
 Kernel2D resource::selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa) {
