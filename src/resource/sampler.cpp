@@ -604,17 +604,12 @@ inline void loadQuads8(const uint32_t* texels, v8i a, int w, v8u& p00, v8u& p10,
 #if defined(__GNUC__)
   asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
 #endif
-  // The bottom row from its own base register: both loads of a lane take its index as
-  // is, with no address arithmetic per lane (the compiler would otherwise add w to it).
-  const uint32_t* below = texels + w;
-#if defined(__GNUC__)
-  asm("" : "+r"(below));
-#endif
   __m128i q[8];
   for (int l = 0; l < 8; ++l) {
-    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texels + ix[l]));
+    const uint32_t* t = texels + ix[l];
+    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(t));
     q[l] = _mm_castpd_si128(
-        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(below + ix[l])));
+        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(t + w)));
   }
   // q[l] = t00 t10 t01 t11 of lane l. Lanes l and l + 4 share a register (one per
   // 128-bit half), then a 4x4 transpose within each half gives the four texel vectors.
@@ -740,21 +735,17 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
     } else {
       // Both halves' texels are fetched before either is filtered, so that all the
       // loads are in flight together (the filter waits on their latency).
+      const v8i r1 = y1 * w;
       v8u p00, p10, p01, p11;
       const bool pairs = pairs8(x0, x1);
-      // y1 = y0 + 1 is r1 = r0 + w (a level has fewer than 2^31 texels: no product
-      // wraps): the 2x2 texels are a block in memory, and r1 is not needed.
-      if (pairs && allDiffer(y0, y1, 1)) {
+      if (pairs && allDiffer(r0, r1, w)) {  // the 2x2 texels are a block in memory
         loadQuads8(texels, r0 + x0, w, p00, p10, p01, p11);
+      } else if (!pairs) {
+        p00 = load8(texels, r0 + x0), p10 = load8(texels, r0 + x1);
+        p01 = load8(texels, r1 + x0), p11 = load8(texels, r1 + x1);
       } else {
-        const v8i r1 = y1 * w;
-        if (!pairs) {
-          p00 = load8(texels, r0 + x0), p10 = load8(texels, r0 + x1);
-          p01 = load8(texels, r1 + x0), p11 = load8(texels, r1 + x1);
-        } else {
-          loadPairs8(texels, r0 + x0, p00, p10);
-          loadPairs8(texels, r1 + x0, p01, p11);
-        }
+        loadPairs8(texels, r0 + x0, p00, p10);
+        loadPairs8(texels, r1 + x0, p01, p11);
       }
       fetched[k / 8] = {p00, p10, p01, p11, fixedX, fixedY};
     }
