@@ -1422,17 +1422,17 @@ namespace {
          sample2DUniform(p->fast, c, laneMask, out);
 }
 
-// sampleImplicit past the batch kernel (tried and declined, or not there): out of line,
-// so that the common call does not set up this path's frame.
-[[gnu::noinline]] void sampleImplicitRest(const Texture& tex, const SamplerState& state,
-                                          const PreparedPlan* p, const float* u, const float* v,
+// sampleImplicit past the batch kernel (tried and declined, or not there) for a plan:
+// out of line, so that the common call does not set up this path's frame, and with
+// its arguments in registers, so that the call to it is a jump.
+[[gnu::noinline]] void sampleImplicitRest(const PreparedPlan* p, const float* u, const float* v,
                                           const float* w, uint16_t laneMask,
                                           float out[4][kBatchLanes]) {
   if (samplePrepared(p, u, v, w, true, laneMask, out, false)) return;
   SampleRequest req;
   req.u = u, req.v = v, req.w = w;
   req.laneMask = laneMask;
-  sampleImpl(tex, state, req, out, true);
+  sampleImpl(*p->fast.tex, p->st, req, out, true);
 }
 
 }  // namespace
@@ -1447,10 +1447,16 @@ void PreparedSampler::sampleImplicit(const float* u, const float* v, const float
                                      uint16_t laneMask, float out[4][kBatchLanes]) const {
   // samplePrepared's order: a plan with the batch kernel has no `single` and takes λ
   // from derivatives without mip blending, so the kernel comes first.
-  const auto* p = static_cast<const PreparedPlan*>(plan_.get());
-  if (p && p->uniform && p->uniform(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out))
+  if (const auto* p = static_cast<const PreparedPlan*>(plan_.get())) {
+    if (p->uniform && p->uniform(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out))
+      return;
+    sampleImplicitRest(p, u, v, w, laneMask, out);
     return;
-  sampleImplicitRest(*tex_, state_, p, u, v, w, laneMask, out);
+  }
+  SampleRequest req;
+  req.u = u, req.v = v, req.w = w;
+  req.laneMask = laneMask;
+  sampleImpl(*tex_, state_, req, out, true);
 }
 
 Kernel2D resource::selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa) {
