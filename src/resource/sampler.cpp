@@ -1113,9 +1113,38 @@ struct Fast2D {
   }
 };
 
+// A batch whose quads chose different levels or filters (keys: (level << 1) | linear per
+// quad): one kernel call per key, each lane taken from its quad's. Lanes are independent
+// in the kernel, so this is what samplePass gives. False (nothing written) when a level
+// is not for the kernel.
+[[gnu::noinline]] bool sample2DMixed(const Fast2D& f, const float* const c[3], uint32_t mask,
+                                     const int keys[4], float out[4][kLanes]) {
+  const SampleLevel* lv[4];
+  for (int q = 0; q < 4; ++q) {
+    lv[q] = f.levels ? f.levels[keys[q] >> 1] : &f.tex->sampleLevel(0, keys[q] >> 1);
+    if (!lv[q] || (!f.levels && !fastLevel(*lv[q], *f.st, f.addr))) return false;
+  }
+  uint32_t done = 0;  // quads sampled
+  for (int q = 0; q < 4; ++q) {
+    if (done >> q & 1) continue;
+    uint32_t lanes = 0;
+    for (int r = q; r < 4; ++r)
+      if (keys[r] == keys[q]) done |= 1u << r, lanes |= 0xfu << (4 * r);
+    const Kernel2D kernel = f.kernels[keys[q] & 1];
+    float tmp[4][kLanes];
+    (kernel ? kernel : selectKernel2D(f.addr[0], f.addr[1], keys[q] & 1))(*lv[q], c[0], c[1], tmp);
+    for (int ch = 0; ch < 4; ++ch)
+      for (int l = 0; l < kLanes; ++l)
+        if (lanes >> l & 1) out[ch][l] = tmp[ch][l];
+  }
+  if (mask != 0xffff) clearLanes(out, mask);
+  return true;
+}
+
 // λ per quad and the level it selects, with the operations of computeLambda and
-// planLevels for a 2D texture (MIPFILTER NONE or POINT); when all four quads agree,
-// samples the batch with one kernel call. Returns false to leave it to the general path.
+// planLevels for a 2D texture (MIPFILTER NONE or POINT); samples the batch with one
+// kernel call when all four quads agree, one per level and filter otherwise. Returns
+// false to leave it to the general path.
 [[gnu::always_inline]] inline bool sample2DUniform(const Fast2D& f, const float* const c[3],
                                                   uint32_t mask, float out[4][kLanes]) {
   const SamplerState& st = *f.st;
@@ -1140,7 +1169,8 @@ struct Fast2D {
   const v4f lb = __builtin_shufflevector(sq[0], sq[1], 2, 6, 10, 14);  // b²
   const v4f ms = la < lb ? lb : la;  // std::max(la, lb)
   int key = -1;
-  bool classified = false;
+  int keys[4];  // per quad
+  bool classified = false, mixed = false;
   // All four quads at once when every ρ² has the exponent form (see below).
   typedef uint32_t v4u __attribute__((vector_size(16)));
   typedef int32_t v4i __attribute__((vector_size(16)));
@@ -1169,7 +1199,10 @@ struct Fast2D {
     level = level > last ? v4i{} + last : level;
     if (mipNone) level = v4i{};
     const v4i k = (level << 1) | linear;
-    if (!all4(k == __builtin_shufflevector(k, k, 0, 0, 0, 0))) return false;
+    if (!all4(k == __builtin_shufflevector(k, k, 0, 0, 0, 0))) {
+      for (int q = 0; q < 4; ++q) keys[q] = k[q];
+      return sample2DMixed(f, c, mask, keys, out);
+    }
     key = k[0];
     classified = true;
   }
@@ -1193,9 +1226,10 @@ struct Fast2D {
       level = mipNone ? 0 : int(std::floor(clampFinite(lam, float(first), float(last)) + 0.5f));
     }
     const int k = (level << 1) | linear;
-    if (key >= 0 && k != key) return false;
-    key = k;
+    mixed |= key >= 0 && k != key;
+    key = keys[q] = k;
   }
+  if (mixed) return sample2DMixed(f, c, mask, keys, out);
   const SampleLevel* lv = f.levels ? f.levels[key >> 1] : &f.tex->sampleLevel(0, key >> 1);
   if (!lv || (!f.levels && !fastLevel(*lv, st, f.addr))) return false;
   const Kernel2D kernel = f.kernels[key & 1];
@@ -1374,7 +1408,8 @@ namespace {
 [[gnu::always_inline]] inline bool samplePrepared(const PreparedPlan* p, const float* u,
                                                   const float* v, const float* w,
                                                   bool derivatives, uint16_t laneMask,
-                                                  float out[4][kBatchLanes]) {
+                                                  float out[4][kBatchLanes],
+                                                  bool tryUniform = true) {
   if (!p) return false;
   const float* c[3] = {u ? u : kZeros, v ? v : kZeros, w ? w : kZeros};
   if (p->single) {
@@ -1383,8 +1418,21 @@ namespace {
     return true;
   }
   if (!p->needLambda || !derivatives || p->st.mipFilter == TextureFilter::Linear) return false;
-  return (p->uniform && p->uniform(p->uniformPlan, c[0], c[1], laneMask, out)) ||
+  return (tryUniform && p->uniform && p->uniform(p->uniformPlan, c[0], c[1], laneMask, out)) ||
          sample2DUniform(p->fast, c, laneMask, out);
+}
+
+// sampleImplicit past the batch kernel (tried and declined, or not there) for a plan:
+// out of line, so that the common call does not set up this path's frame, and with
+// its arguments in registers, so that the call to it is a jump.
+[[gnu::noinline]] void sampleImplicitRest(const PreparedPlan* p, const float* u, const float* v,
+                                          const float* w, uint16_t laneMask,
+                                          float out[4][kBatchLanes]) {
+  if (samplePrepared(p, u, v, w, true, laneMask, out, false)) return;
+  SampleRequest req;
+  req.u = u, req.v = v, req.w = w;
+  req.laneMask = laneMask;
+  sampleImpl(*p->fast.tex, p->st, req, out, true);
 }
 
 }  // namespace
@@ -1397,8 +1445,14 @@ void PreparedSampler::sample(const SampleRequest& req, float out[4][kBatchLanes]
 
 void PreparedSampler::sampleImplicit(const float* u, const float* v, const float* w,
                                      uint16_t laneMask, float out[4][kBatchLanes]) const {
-  if (samplePrepared(static_cast<const PreparedPlan*>(plan_.get()), u, v, w, true, laneMask, out))
+  // samplePrepared's order: a plan with the batch kernel has no `single` and takes λ
+  // from derivatives without mip blending, so the kernel comes first.
+  if (const auto* p = static_cast<const PreparedPlan*>(plan_.get())) {
+    if (p->uniform && p->uniform(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out))
+      return;
+    sampleImplicitRest(p, u, v, w, laneMask, out);
     return;
+  }
   SampleRequest req;
   req.u = u, req.v = v, req.w = w;
   req.laneMask = laneMask;

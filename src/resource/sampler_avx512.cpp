@@ -115,7 +115,7 @@ inline bool allDiffer(v16i a, v16i b, int d) {
 
 // Sixteen texels by index: scalar loads inserted four to a 128-bit block, the indices
 // read back from memory (load8 of sampler.cpp); faster than vpgatherdd on current cores.
-inline v16u load16(const uint32_t* texels, v16i a) {
+[[gnu::always_inline]] inline v16u load16(const uint32_t* texels, v16i a) {
   alignas(64) int ix[16];
   std::memcpy(ix, &a, sizeof ix);
   asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
@@ -151,12 +151,15 @@ inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& 
   alignas(64) int ix[16];
   std::memcpy(ix, &a, sizeof ix);
   asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
+  // The bottom row from its own base register: both loads of a lane take its index as
+  // is, with no address arithmetic per lane (the compiler would otherwise add w to it).
+  const uint32_t* below = texels + w;
+  asm("" : "+r"(below));
   __m128i q[16];
   for (int l = 0; l < 16; ++l) {
-    const uint32_t* t = texels + ix[l];
-    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(t));
+    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texels + ix[l]));
     q[l] = _mm_castpd_si128(
-        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(t + w)));
+        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(below + ix[l])));
   }
   // q[l] = t00 t10 t01 t11 of lane l. Lanes l, l + 4, l + 8, l + 12 share a register (one
   // per 128-bit block), then a 4x4 transpose within each block gives the texel vectors.
@@ -199,12 +202,17 @@ inline v16f columnLerp(v32h top, v32h bottom, v16f wy) {
   return fmadd(fmadd(-q, splat(65280.0f), x), splat(kInv65280), q);
 }
 
-// Lanes outside `mask` store 0 (clearLanes of sampler.cpp).
+// Lanes outside `mask` store 0 (clearLanes of sampler.cpp), or with Merge keep what
+// the row held.
+template <bool Merge>
 inline void store(float* p, v16f v, __mmask16 mask) {
-  _mm512_storeu_ps(p, _mm512_maskz_mov_ps(mask, __m512(v)));
+  if constexpr (Merge)
+    _mm512_mask_storeu_ps(p, mask, __m512(v));
+  else
+    _mm512_storeu_ps(p, _mm512_maskz_mov_ps(mask, __m512(v)));
 }
 
-template <TextureAddress AU, TextureAddress AV, bool Linear>
+template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false>
 inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mmask16 mask,
                      float out[4][kLanes]) {
   const int w = lv.width, h = lv.height;
@@ -218,19 +226,23 @@ inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mm
   const v16i r0 = y0 * w;
   if constexpr (!Linear) {
     const v16u p = load16(texels, r0 + x0);
-    for (int ch = 0; ch < 4; ++ch) store(out[ch], byteOver255(channel(p, 8 * ch)), mask);
+    for (int ch = 0; ch < 4; ++ch) store<Merge>(out[ch], byteOver255(channel(p, 8 * ch)), mask);
   } else {
-    const v16i r1 = y1 * w;
     v16u p00, p10, p01, p11;
     const bool pairs = allDiffer(x0, x1, 1);
-    if (pairs && allDiffer(r0, r1, w)) {  // the 2x2 texels are a block in memory
+    // y1 = y0 + 1 is r1 = r0 + w (a level has fewer than 2^31 texels: no product wraps):
+    // the 2x2 texels are a block in memory, and r1 is not needed.
+    if (pairs && allDiffer(y0, y1, 1)) {
       loadQuads16(texels, r0 + x0, w, p00, p10, p01, p11);
-    } else if (!pairs) {
-      p00 = load16(texels, r0 + x0), p10 = load16(texels, r0 + x1);
-      p01 = load16(texels, r1 + x0), p11 = load16(texels, r1 + x1);
     } else {
-      loadPairs16(texels, r0 + x0, p00, p10);
-      loadPairs16(texels, r1 + x0, p01, p11);
+      const v16i r1 = y1 * w;
+      if (!pairs) {
+        p00 = load16(texels, r0 + x0), p10 = load16(texels, r0 + x1);
+        p01 = load16(texels, r1 + x0), p11 = load16(texels, r1 + x1);
+      } else {
+        loadPairs16(texels, r0 + x0, p00, p10);
+        loadPairs16(texels, r1 + x0, p01, p11);
+      }
     }
     const v16u m = v16u{} + 0x00ff00ffu;
     const v16u wx = v16u(fixedX) & 255u;
@@ -240,16 +252,46 @@ inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mm
     const v32h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
     const v32h bottomGA = rowLerp((p01 >> 8) & m, (p11 >> 8) & m, wx2);
     const v16f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
-    store(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
-    store(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
-    store(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
-    store(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
+    store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
+    store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
+    store<Merge>(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
+    store<Merge>(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
   }
 }
 
 template <TextureAddress AU, TextureAddress AV, bool Linear>
 void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out[4][kLanes]) {
   filter16<AU, AV, Linear>(lv, u, v, 0xffff, out);
+}
+
+// A batch whose quads chose different levels or filters: each (level, filter) of the
+// four quads samples its quads' lanes, `k` holding (level << 1) | linear of each quad in
+// its four lanes.
+// Every lane belongs to one quad, so every lane in `mask` is written once; the others
+// read 0. Lanes are independent in the kernel, so this is what a batch of one key gives
+// on those lanes. False (nothing written) when a level is not for the kernels.
+template <TextureAddress AU, TextureAddress AV>
+[[gnu::noinline]] bool mixedLevels16(const UniformPlan& plan, const float* u, const float* v,
+                                     uint32_t mask, __m512i k, float out[4][kLanes]) {
+  alignas(64) int lanes[16];  // here, not in the caller: its frame stays unaligned
+  _mm512_store_si512(lanes, k);
+  const int keys[4] = {lanes[0], lanes[4], lanes[8], lanes[12]};
+  for (int q = 0; q < 4; ++q)
+    if (!plan.levels[keys[q] >> 1]) return false;
+  for (int ch = 0; ch < 4; ++ch) _mm512_storeu_ps(out[ch], _mm512_setzero_ps());
+  uint32_t done = 0;  // quads sampled
+  for (int q = 0; q < 4; ++q) {
+    if (done >> q & 1) continue;
+    uint32_t lanes = 0;
+    for (int r = q; r < 4; ++r)
+      if (keys[r] == keys[q]) done |= 1u << r, lanes |= 0xfu << (4 * r);
+    const SampleLevel& lv = *plan.levels[keys[q] >> 1];
+    if (keys[q] & 1)
+      filter16<AU, AV, true, true>(lv, u, v, __mmask16(lanes & mask), out);
+    else
+      filter16<AU, AV, false, true>(lv, u, v, __mmask16(lanes & mask), out);
+  }
+  return true;
 }
 
 // sample2DUniform's classification of the four quads at once (see there): ρ² of each
@@ -285,7 +327,9 @@ bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t
   if (plan.mipNone) level = v16i{};
   const v16i k = (level << 1) | linear;
   const int key = _mm_cvtsi128_si32(_mm512_castsi512_si128(__m512i(k)));
-  if (_mm512_cmpeq_epi32_mask(__m512i(k), _mm512_set1_epi32(key)) != 0xffff) return false;
+  if (_mm512_cmpeq_epi32_mask(__m512i(k), _mm512_set1_epi32(key)) != 0xffff) {
+    return mixedLevels16<AU, AV>(plan, u, v, mask, __m512i(k), out);
+  }
   const SampleLevel* lv = plan.levels[key >> 1];
   if (!lv) return false;
   if (key & 1)

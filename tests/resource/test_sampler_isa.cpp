@@ -3,6 +3,7 @@
 // random and special coordinates, every addressing pair, both filters, every lane mask.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -143,6 +144,59 @@ TEST(SamplerIsaVariants, SamplingAgreesAcrossVariantsForEveryLaneMask) {
     }
   }
   setActiveIsa(previous);
+}
+
+// Batches whose quads choose different levels (or filters) are sampled level by level
+// on the fast paths: each quad's footprint is t texels per pixel with t from a list
+// whose log2 stays 0.24 or more away from the rounding points of POINT mip selection,
+// so quad q's level is round(log2 t + bias), clamped to [0, last] (λ <= 0: MAGFILTER,
+// level 0), bias 0 or 0.1 (which takes the path that evaluates log2).
+// Both variants, sampleTexture and a PreparedSampler give the reference's result, and
+// most batches mix levels.
+TEST(SamplerIsaVariants, BatchesMixingLevelsMatchTheReference) {
+  const auto tex = randomTexture(64, 64, 0, 9);
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float texelsPerPixel[] = {0.3f, 0.6f, 1.2f, 2.4f, 4.8f, 9.6f, 19.2f};
+  const CpuIsa previous = activeIsa();
+  const bool avx512 = detectedIsa() == CpuIsa::Avx512;
+  int mixedBatches = 0;
+  for (int iter = 0; iter < 4000; ++iter) {
+    SamplerState s;
+    s.addressU = kModes[rng() % 4], s.addressV = kModes[rng() % 4];
+    s.magFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+    s.minFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+    s.mipFilter = rng() % 4 ? TextureFilter::Point : TextureFilter::None;
+    s.mipLodBias = iter % 4 == 1 ? 0.1f : 0.0f;
+    alignas(64) float u[N], v[N];
+    int level[4];
+    for (int q = 0; q < 4; ++q) {
+      const int pick = int(rng() % 7);
+      const float step = texelsPerPixel[pick] / 64.0f, u0 = unit(rng) * 4 - 2, v0 = unit(rng) * 4 - 2;
+      level[q] = std::max(pick - 2, 0);  // round(log2 t): -2, -1, 0, 1, 2, 3, 4
+      for (int k = 0; k < 4; ++k)
+        u[4 * q + k] = u0 + step * float(k & 1), v[4 * q + k] = v0 + step * float(k >> 1);
+    }
+    mixedBatches += s.mipFilter == TextureFilter::Point &&
+                    (level[0] != level[1] || level[0] != level[2] || level[0] != level[3]);
+    SampleRequest req;
+    req.u = u, req.v = v;
+    req.laneMask = iter % 3 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+    float expected[4][N];
+    sampleTextureReference(*tex, s, req, expected);
+    for (CpuIsa isa : {CpuIsa::Avx2, CpuIsa::Avx512}) {
+      if (isa == CpuIsa::Avx512 && !avx512) continue;
+      setActiveIsa(isa);
+      const PreparedSampler prepared(*tex, s);
+      float a[4][N], b[4][N];
+      sampleTexture(*tex, s, req, a);
+      prepared.sampleImplicit(u, v, nullptr, req.laneMask, b);
+      ASSERT_EQ(std::memcmp(expected, a, sizeof a), 0) << "iter " << iter << " isa " << int(isa);
+      ASSERT_EQ(std::memcmp(expected, b, sizeof b), 0) << "iter " << iter << " isa " << int(isa);
+    }
+  }
+  setActiveIsa(previous);
+  EXPECT_GT(mixedBatches, 2000);
 }
 
 }  // namespace
