@@ -147,22 +147,7 @@ class Translator {
     return v;
   }
 
-  float modify(float x, SrcMod m) {
-    switch (m) {
-      case SrcMod::None: return x;
-      case SrcMod::Neg: return -x;
-      case SrcMod::Bias: return x - 0.5f;
-      case SrcMod::BiasNeg: return -(x - 0.5f);
-      case SrcMod::Sign: return 2.0f * (x - 0.5f);
-      case SrcMod::SignNeg: return -2.0f * (x - 0.5f);
-      case SrcMod::Comp: return 1.0f - x;
-      case SrcMod::X2: return 2.0f * x;
-      case SrcMod::X2Neg: return -2.0f * x;
-      case SrcMod::Abs: return std::fabs(x);
-      case SrcMod::AbsNeg: return -std::fabs(x);
-    }
-    return x;
-  }
+  float modify(float x, SrcMod m) { return applySourceModifier(x, m); }
   llvm::Value* modify(llvm::Value* x, SrcMod m) {
     switch (m) {
       case SrcMod::None: return x;

@@ -21,22 +21,6 @@ void BatchRegistersResize(BatchRegisters& r, const Program& p) {
   r.outputs.resize(std::max(p.outputCount, 1));
 }
 
-inline float applyMod(float x, SrcMod m) {
-  switch (m) {
-    case SrcMod::None: return x;
-    case SrcMod::Neg: return -x;
-    case SrcMod::Bias: return x - 0.5f;
-    case SrcMod::BiasNeg: return -(x - 0.5f);
-    case SrcMod::Sign: return 2.0f * (x - 0.5f);
-    case SrcMod::SignNeg: return -2.0f * (x - 0.5f);
-    case SrcMod::Comp: return 1.0f - x;
-    case SrcMod::X2: return 2.0f * x;
-    case SrcMod::X2Neg: return -2.0f * x;
-    case SrcMod::Abs: return std::fabs(x);
-    case SrcMod::AbsNeg: return -std::fabs(x);
-  }
-  return x;
-}
 
 // Fetches a source operand into `scratch` unless it can be read in place; returns
 // per-component lane pointers.
@@ -91,6 +75,15 @@ inline const LaneVec4* laneRegister(const BatchRegisters& regs, RegFile f, int i
 }
 
 // Relative source: per-lane register index, then the same swizzle and modifier.
+// The register index + a0: a0 truncated toward zero (as cvttps2dq). NaN, values beyond
+// int's range and sums past it give INT_MIN, outside every register range, as the
+// native code's 32-bit conversion and add do.
+inline int relativeIndex(int base, float a0) {
+  if (!(a0 > -2147483648.0f && a0 < 2147483648.0f)) return INT32_MIN;
+  const int64_t sum = int64_t(base) + int64_t(int32_t(a0));
+  return sum >= INT32_MIN && sum <= INT32_MAX ? int(sum) : INT32_MIN;
+}
+
 void fetchRelative(const Src& s, const BatchRegisters& regs, const ExecContext& ctx,
                    const Program& p, float (*scratch)[N], Operand& o) {
   int index[N];
@@ -98,7 +91,7 @@ void fetchRelative(const Src& s, const BatchRegisters& regs, const ExecContext& 
     for (int l = 0; l < N; ++l) index[l] = s.index + regs.loopCounter;
   } else {
     const LaneVec4* a = laneRegister(regs, RegFile::Temp, s.relReg);
-    for (int l = 0; l < N; ++l) index[l] = s.index + (a ? int(a->c[s.relComp & 3][l]) : 0);
+    for (int l = 0; l < N; ++l) index[l] = relativeIndex(s.index, a ? a->c[s.relComp & 3][l] : 0.0f);
   }
   const bool uniform = isUniformFile(s.file);
   for (int l = 0; l < N; ++l) {
@@ -109,7 +102,7 @@ void fetchRelative(const Src& s, const BatchRegisters& regs, const ExecContext& 
       if (const LaneVec4* r = laneRegister(regs, s.file, index[l]))
         v = Vec4(r->c[0][l], r->c[1][l], r->c[2][l], r->c[3][l]);
     }
-    for (int c = 0; c < 4; ++c) scratch[c][l] = applyMod(v[(s.swizzle >> (2 * c)) & 3], s.mod);
+    for (int c = 0; c < 4; ++c) scratch[c][l] = applySourceModifier(v[(s.swizzle >> (2 * c)) & 3], s.mod);
   }
   for (int c = 0; c < 4; ++c) o.c[c] = scratch[c];
 }
@@ -138,7 +131,7 @@ inline void fetch(const Src& s, const BatchRegisters& regs, const ExecContext& c
         case SrcMod::Neg: for (int l = 0; l < N; ++l) d[l] = -b[l]; break;
         case SrcMod::Comp: for (int l = 0; l < N; ++l) d[l] = 1.0f - b[l]; break;
         case SrcMod::Sign: for (int l = 0; l < N; ++l) d[l] = 2.0f * (b[l] - 0.5f); break;
-        default: for (int l = 0; l < N; ++l) d[l] = applyMod(b[l], s.mod); break;
+        default: for (int l = 0; l < N; ++l) d[l] = applySourceModifier(b[l], s.mod); break;
       }
       o.c[c] = d;
     }
@@ -146,7 +139,7 @@ inline void fetch(const Src& s, const BatchRegisters& regs, const ExecContext& c
   }
   const Vec4 v = uniformValue(s, s.index, ctx, p);
   for (int c = 0; c < 4; ++c) {
-    float x = applyMod(v[(s.swizzle >> (2 * c)) & 3], s.mod);
+    float x = applySourceModifier(v[(s.swizzle >> (2 * c)) & 3], s.mod);
     for (int l = 0; l < N; ++l) scratch[c][l] = x;
     o.c[c] = scratch[c];
   }
@@ -742,7 +735,7 @@ struct Step {
   float scale, lo, hi;     // result modifiers
   int quantize;            // fixed-point grid (0: none)
   // Source modifiers of lane-varying sources as v * modScale + modOffset (the
-  // ps_1_x set is affine; the same roundings as applyMod).
+  // ps_1_x set is affine; the same roundings as applySourceModifier).
   uint8_t modded;          // bit i: source i has a modifier
   float modScale[3], modOffset[3];
   uint8_t comps[4], ncomps;  // written components, in order
@@ -953,20 +946,6 @@ struct PreparedProgram {
   std::vector<LaneVec4> uniforms;  // constant and immediate operands, splat over the lanes
 };
 
-// Affine form of a source modifier: v * scale + offset (false: not affine).
-static bool affineMod(SrcMod m, float& scale, float& offset) {
-  static const struct { SrcMod m; float scale, offset; } kAffine[] = {
-      {SrcMod::Neg, -1, 0},     {SrcMod::Bias, 1, -0.5f}, {SrcMod::BiasNeg, -1, 0.5f},
-      {SrcMod::Sign, 2, -1},    {SrcMod::SignNeg, -2, 1}, {SrcMod::Comp, -1, 1},
-      {SrcMod::X2, 2, 0},       {SrcMod::X2Neg, -2, 0},
-  };
-  for (const auto& a : kAffine)
-    if (a.m == m) {
-      scale = a.scale, offset = a.offset;
-      return true;
-    }
-  return false;
-}
 
 // Native code for `program` in these registers (null: the interpreter runs it).
 static std::shared_ptr<const detail::JitProgram> nativeCode(const Program& program,
@@ -1053,7 +1032,7 @@ ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRe
         LaneVec4& u = pp->uniforms[nextUniform++];
         const Vec4 v = uniformValue(src, src.index, ctx, program);
         for (int c = 0; c < 4; ++c) {
-          const float x = applyMod(v[(src.swizzle >> (2 * c)) & 3], src.mod);
+          const float x = applySourceModifier(v[(src.swizzle >> (2 * c)) & 3], src.mod);
           for (int l = 0; l < N; ++l) u.c[c][l] = x;
           // Equal values share one array, so replicated results are recognised.
           s.src[i][c] = std::memcmp(&x, &u.c[0][0], sizeof x) == 0 ? u.c[0] : u.c[c];
@@ -1061,7 +1040,7 @@ ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRe
         continue;
       }
       if (src.mod != SrcMod::None) {
-        if (affineMod(src.mod, s.modScale[i], s.modOffset[i])) s.modded |= uint8_t(1u << i);
+        if (affineSourceModifier(src.mod, s.modScale[i], s.modOffset[i])) s.modded |= uint8_t(1u << i);
         else resolved = false;
         if (s.modOffset[i] == 0.0f) s.modOffset[i] = -0.0f;
       }
@@ -1190,7 +1169,6 @@ void executeInstruction(const Instr& in, const Program& program, const ExecConte
   executeInstr(in, program, ctx, regs);
 }
 
-float applySourceModifier(float x, SrcMod mod) { return applyMod(x, mod); }
 
 Vec4 uniformRegisterValue(const Src& s, int index, const ExecContext& ctx, const Program& p) {
   return uniformValue(s, index, ctx, p);

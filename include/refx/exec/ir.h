@@ -3,6 +3,7 @@
 // instructions executed on SoA batches of kBatchLanes lanes.
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -39,6 +40,42 @@ constexpr uint8_t kSrcClampUnit = 1;  // clamp the register value to [-1, 1] bef
 enum class SrcMod : uint8_t {
   None, Neg, Bias, BiasNeg, Sign, SignNeg, Comp, X2, X2Neg, Abs, AbsNeg,
 };
+
+// A source modifier applied to one value (the D3D definitions: bias x - 0.5, bx2
+// 2(x - 0.5), comp 1 - x, …).
+inline float applySourceModifier(float x, SrcMod m) {
+  switch (m) {
+    case SrcMod::None: return x;
+    case SrcMod::Neg: return -x;
+    case SrcMod::Bias: return x - 0.5f;
+    case SrcMod::BiasNeg: return -(x - 0.5f);
+    case SrcMod::Sign: return 2.0f * (x - 0.5f);
+    case SrcMod::SignNeg: return -2.0f * (x - 0.5f);
+    case SrcMod::Comp: return 1.0f - x;
+    case SrcMod::X2: return 2.0f * x;
+    case SrcMod::X2Neg: return -2.0f * x;
+    case SrcMod::Abs: return std::fabs(x);
+    case SrcMod::AbsNeg: return -std::fabs(x);
+  }
+  return x;
+}
+
+// The affine form v * scale + offset of a source modifier, for vector code (false: not
+// affine, abs). Its rounding can differ from applySourceModifier's in the sign of a zero
+// (-(x - 0.5) against -x + 0.5 at x = 0.5).
+inline bool affineSourceModifier(SrcMod m, float& scale, float& offset) {
+  static constexpr struct { SrcMod m; float scale, offset; } kAffine[] = {
+      {SrcMod::Neg, -1, 0},     {SrcMod::Bias, 1, -0.5f}, {SrcMod::BiasNeg, -1, 0.5f},
+      {SrcMod::Sign, 2, -1},    {SrcMod::SignNeg, -2, 1}, {SrcMod::Comp, -1, 1},
+      {SrcMod::X2, 2, 0},       {SrcMod::X2Neg, -2, 0},
+  };
+  for (const auto& a : kAffine)
+    if (a.m == m) {
+      scale = a.scale, offset = a.offset;
+      return true;
+    }
+  return false;
+}
 
 struct Src {
   RegFile file = RegFile::Temp;

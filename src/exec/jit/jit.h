@@ -65,7 +65,6 @@ void runJit(const JitProgram& jit, JitFunction fn, JitFrame& frame, const ExecCo
 // The interpreter's routines the generated code and the code generator share
 // (interpreter.cpp), so results stay bit-identical.
 void executeInstruction(const Instr& in, const Program& program, const ExecContext& ctx, BatchRegisters& regs);
-float applySourceModifier(float x, SrcMod mod);
 // Value of a uniform source register before swizzle and modifier (Imm, Const with
 // local constants, unit clamp), as the interpreter reads it.
 Vec4 uniformRegisterValue(const Src& s, int index, const ExecContext& ctx, const Program& p);

@@ -55,27 +55,13 @@ bool fetchedByHelper(const Src& s) {
 bool isLaneFile(RegFile f) { return f == RegFile::Temp || f == RegFile::Input || f == RegFile::Output; }
 
 // Ops the interpreter's prepared path runs with affine source modifiers (v * k + o);
-// the others read sources through applyMod.
+// the others read sources through applySourceModifier.
 bool affineModifierOp(Op op) {
   switch (op) {
     case Op::Mov: case Op::Add: case Op::Sub: case Op::Mul: case Op::Mad: case Op::Min:
     case Op::Max: case Op::Lrp: case Op::Cmp: case Op::Dp3: case Op::Dp4: return true;
     default: return false;
   }
-}
-
-bool affineMod(SrcMod m, float& scale, float& offset) {
-  static const struct { SrcMod m; float scale, offset; } kAffine[] = {
-      {SrcMod::Neg, -1, 0},     {SrcMod::Bias, 1, -0.5f}, {SrcMod::BiasNeg, -1, 0.5f},
-      {SrcMod::Sign, 2, -1},    {SrcMod::SignNeg, -2, 1}, {SrcMod::Comp, -1, 1},
-      {SrcMod::X2, 2, 0},       {SrcMod::X2Neg, -2, 0},
-  };
-  for (const auto& a : kAffine)
-    if (a.m == m) {
-      scale = a.scale, offset = a.offset;
-      return true;
-    }
-  return false;
 }
 
 // 16 lanes: one zmm, or two ymm (p[0] lanes 0..7, p[1] lanes 8..15).
@@ -87,7 +73,7 @@ class Generator {
  public:
   // Instructions [begin, end) of `program`. `generic`: as the interpreter's
   // reference routine runs them (programs with flow control), else as its prepared
-  // path does (they differ in how source modifiers round: applyMod or v * k + o).
+  // path does (they differ in how source modifiers round: applySourceModifier or v * k + o).
   Generator(x86::Compiler& cc, const Program& program, JitIsa isa, JitProgram& out, size_t begin, size_t end,
             bool generic)
       : cc_(cc), program_(program), wide_(isa == JitIsa::Avx512), parts_(wide_ ? 1 : 2), out_(out),
@@ -178,7 +164,7 @@ class Generator {
     for (int i = 0; i < sourceCount(in.op); ++i) {
       const Src& s = in.src[i];
       if (fetchedByHelper(s)) {
-        // The interpreter's routine runs such instructions: modifiers through applyMod.
+        // The interpreter's routine runs such instructions: modifiers through applySourceModifier.
         affine_ = false;
         gathered_[i] = gatheredConstant(s);
         fetched_[i] = !gathered_[i];
@@ -187,7 +173,7 @@ class Generator {
         continue;
       }
       float k, o;
-      if (isLaneFile(s.file) && s.mod != SrcMod::None && !affineMod(s.mod, k, o)) affine_ = false;
+      if (isLaneFile(s.file) && s.mod != SrcMod::None && !affineSourceModifier(s.mod, k, o)) affine_ = false;
       if (isLaneFile(s.file)) use(s.file, s.index);
     }
     if (in.op != Op::Kill) use(in.dst.file, in.dst.index);
@@ -319,7 +305,7 @@ class Generator {
   void emitTex(uint32_t index) {
     const Instr& in = program_.code[index];
     ++out_.inlineInstructions;
-    affine_ = false;  // the interpreter reads texture operands through applyMod
+    affine_ = false;  // the interpreter reads texture operands through applySourceModifier
     const Src& coord = in.src[0];
     bool alias = false;
     for (int i = 0; i < sourceCount(in.op); ++i) {
@@ -547,7 +533,7 @@ class Generator {
       V v = laneValue(s.file, s.index, comp);
       if (s.mod == SrcMod::None) return v;
       float k, o;
-      if (affine_ && affineMod(s.mod, k, o)) {
+      if (affine_ && affineSourceModifier(s.mod, k, o)) {
         // The prepared path: v * k + o (o = -0 adds nothing; so does * 1 before an
         // add, which quiets a signalling NaN as the multiplication would).
         if (k != 1.0f) v = mul(v, splat(k));
@@ -585,7 +571,7 @@ class Generator {
     return modify(v, s.mod);
   }
 
-  // applyMod, lane by lane.
+  // applySourceModifier, lane by lane.
   V modify(const V& v, SrcMod m) {
     constexpr uint32_t kSign = 0x80000000u, kMagnitude = 0x7fffffffu;
     switch (m) {
