@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "ff_vertex_program.h"
 #include "pipeline/ff_vertex.h"
 #include "refx/exec/interpreter.h"
 
@@ -27,16 +28,8 @@ struct BlendVertex {
   Vec4 normal1{0, 0, -1, 1};
 };
 
-// The program and the constants it reads (exec/abi.h kConstVertex*) for state s.
-struct BuiltProgram {
-  Program program;
-  std::vector<Vec4> constants;
-};
-BuiltProgram build(const DeviceState& s, const FixedFunctionVertexConfig& c) {
-  BuiltProgram b{buildFixedFunctionVertexProgram(s, c), {}};
-  fixedFunctionVertexConstants(s, c, b.constants);
-  return b;
-}
+using refx::test::BuiltProgram;
+using refx::test::build;
 
 // Outputs of each vertex; vertex i runs in lane 3*i + 1 of a batch whose other lanes
 // hold an unrelated vertex.

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <vector>
 
+#include "ff_vertex_program.h"
 #include "pipeline/ff_vertex.h"
 #include "refx/exec/interpreter.h"
 
@@ -42,16 +43,8 @@ struct Result {
 // program that mixes lanes shows up as a wrong value.
 constexpr int kLanes[] = {5, 0, 15, 9, 2, 12, 7, 3};
 
-// The program and the constants it reads (exec/abi.h kConstVertex*) for state s.
-struct BuiltProgram {
-  Program program;
-  std::vector<Vec4> constants;
-};
-BuiltProgram build(const DeviceState& s, const FixedFunctionVertexConfig& c) {
-  BuiltProgram b{buildFixedFunctionVertexProgram(s, c), {}};
-  fixedFunctionVertexConstants(s, c, b.constants);
-  return b;
-}
+using refx::test::BuiltProgram;
+using refx::test::build;
 
 std::vector<Result> run(const BuiltProgram& built, const std::vector<Vertex>& verts) {
   const Program& p = built.program;
