@@ -156,13 +156,29 @@ static inline uint8_t toUnorm8(float v) {
 typedef uint32_t v4u __attribute__((vector_size(16)));
 typedef uint32_t v8u __attribute__((vector_size(32)));
 
+// toUnorm8 on eight lanes: NaN and negatives 0, then round to nearest.
+inline v8i toUnorm8x8(v8f v) {
+  const v8f zero{};
+#if defined(__AVX__)
+  // vmaxps/vminps return their second operand for NaN and for equal values (±0),
+  // so these are exactly v > 0 ? v : 0 and v < 1 ? v : 1 in one instruction each.
+  __m256 m;
+  __builtin_memcpy(&m, &v, sizeof m);
+  m = _mm256_min_ps(_mm256_max_ps(m, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
+  __builtin_memcpy(&v, &m, sizeof v);
+#else
+  const v8f one = zero + 1.0f;
+  v = v > zero ? v : zero;
+  v = v < one ? v : one;
+#endif
+  return __builtin_convertvector(v * (zero + 255.0f) + (zero + 0.5f), v8i);
+}
+
 // Opaque writes with nothing but an (already done) depth test: convert the whole
 // batch to 8 bits at once and store the live lanes.
 static void storeOpaque(const ColorTarget& t, int width, int height, int bx, int by, uint16_t mask,
                         const float (*color)[kBatchLanes]) {
   alignas(64) uint32_t packed[kBatchLanes];
-  const v8f zero{}, k255 = zero + 255.0f, half = zero + 0.5f;
-  [[maybe_unused]] const v8f one = zero + 1.0f;
   const v8i alphaOr = v8i{} + int32_t(t.hasAlpha ? 0u : 0xff000000u);
   const bool inside = bx + 4 <= width && by + 4 <= height;
   const bool whole = mask == 0xffff && inside;
@@ -178,19 +194,7 @@ static void storeOpaque(const ColorTarget& t, int width, int height, int bx, int
     for (int c = 0; c < 4; ++c) {
       v8f v;
       __builtin_memcpy(&v, color[c] + k, sizeof v);
-      // Same rounding as toUnorm8; NaN and negatives become 0.
-#if defined(__AVX__)
-      // vmaxps/vminps return their second operand for NaN and for equal values (±0),
-      // so these are exactly v > 0 ? v : 0 and v < 1 ? v : 1 in one instruction each.
-      __m256 m;
-      __builtin_memcpy(&m, &v, sizeof m);
-      m = _mm256_min_ps(_mm256_max_ps(m, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
-      __builtin_memcpy(&v, &m, sizeof v);
-#else
-      v = v > zero ? v : zero;
-      v = v < one ? v : one;
-#endif
-      q[c] = __builtin_convertvector(v * k255 + half, v8i);
+      q[c] = toUnorm8x8(v);
     }
     const v8i p = ((q[3] << 24) | alphaOr) | (q[0] << 16) | (q[1] << 8) | q[2];
     if (whole) {
@@ -363,22 +367,6 @@ inline int laneBits(v8i on) {
 #endif
 }
 
-// toUnorm8 on eight lanes: NaN and negatives 0, then round to nearest.
-inline v8i toUnorm8x8(v8f v) {
-  const v8f zero{};
-#if defined(__AVX__)
-  // vmaxps/vminps return their second operand for NaN and for equal values (±0).
-  __m256 m;
-  __builtin_memcpy(&m, &v, sizeof m);
-  m = _mm256_min_ps(_mm256_max_ps(m, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
-  __builtin_memcpy(&v, &m, sizeof v);
-#else
-  const v8f one = zero + 1.0f;
-  v = v > zero ? v : zero;
-  v = v < one ? v : one;
-#endif
-  return __builtin_convertvector(v * (zero + 255.0f) + (zero + 0.5f), v8i);
-}
 
 // D3DCMPFUNC F on eight depths at once.
 template <uint32_t F>
