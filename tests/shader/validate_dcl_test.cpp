@@ -51,6 +51,20 @@ TEST(ValidatorTokens, TextureTypeBelongsToSamplerDcls) {
             "dcl of v0 has a texture type; only samplers (s#) have one");
 }
 
+TEST(ValidatorTokens, SamplerDclsCarryNoUsage) {
+  using namespace refx::shader;
+  // ps_2_0: dcl_2d s0 whose usage token 0x900A0000 has usage index 10 in bits 19:16 (a
+  // sampler's usage fields are reserved, and no assembler text can express them);
+  // mov oC0, c0.
+  EXPECT_EQ(firstProblem({0xFFFF0200, 0x0200001F, 0x900A0000, 0xA00F0800, 0x02000001, 0x800F0800,
+                          0xA0E40000, 0x0000FFFF}),
+            "dcl of s0 has a usage (0, index 10); a sampler dcl carries only a texture type");
+  // The same with usage 5 (texcoord) in bits 3:0.
+  EXPECT_EQ(firstProblem({0xFFFF0200, 0x0200001F, 0x90000005, 0xA00F0800, 0x02000001, 0x800F0800,
+                          0xA0E40000, 0x0000FFFF}),
+            "dcl of s0 has a usage (5, index 0); a sampler dcl carries only a texture type");
+}
+
 TEST(ValidatorTokens, DclUsageBeyondSampleIsRejected) {
   using namespace refx::shader;
   // vs_2_0: dcl v0 with usage 14 in its usage token (0x8000000E; D3DDECLUSAGE_SAMPLE = 13

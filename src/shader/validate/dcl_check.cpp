@@ -1,7 +1,7 @@
 // dcl: which register files a version declares (v# everywhere that has dcl, o# and
 // s# in vs_3_0, t# in ps_2_x, s# from ps_2_0, vPos/vFace in ps_3_0), within their
 // counts, each once (vs_3_0 outputs may share an o# with disjoint masks), with a
-// texture type exactly on samplers, a D3DDECLUSAGE value, a non-empty mask, no
+// texture type exactly on samplers (and no usage on them), a D3DDECLUSAGE value, a non-empty mask, no
 // shift or _sat, and _centroid only on pixel-shader inputs.
 #include "shader/validate/check.h"
 
@@ -53,6 +53,10 @@ class DclCheck final : public Check {
           in.textureType != TextureType::Volume)
         ctx.error(in, "V1613", "dcl of {} needs a texture type (dcl_2d, dcl_cube or dcl_volume)",
                   ctx.reg(d.type, d.index));
+      // Bits 3:0 and 19:16 of a sampler's usage token are reserved: no text form writes them.
+      if (in.usage != DeclUsage::Position || in.usageIndex != 0)
+        ctx.error(in, "V1613", "dcl of {} has a usage ({}, index {}); a sampler dcl carries only a texture type",
+                  ctx.reg(d.type, d.index), int(in.usage), int(in.usageIndex));
       if (ctx.declared.count(registerKey(d.type, d.index)))
         ctx.error(in, "V1615", "{} is declared twice", ctx.reg(d.type, d.index));
       ctx.declared[registerKey(d.type, d.index)] = 0xF;
