@@ -65,6 +65,19 @@ TEST(ValidatorTokens, SamplerDclsCarryNoUsage) {
             "dcl of s0 has a usage (5, index 0); a sampler dcl carries only a texture type");
 }
 
+TEST(ValidatorTokens, Ps2xInputDclsCarryNoUsage) {
+  using namespace refx::shader;
+  // ps_2_0: dcl t1 whose usage token 0x80000005 says texcoord (usage 5): ps_2_x input
+  // declarations are bit 31 alone; mov oC0, t1.
+  EXPECT_EQ(firstProblem({0xFFFF0200, 0x0200001F, 0x80000005, 0xB00F0001, 0x02000001, 0x800F0800,
+                          0xB0E40001, 0x0000FFFF}),
+            "dcl of t1 has a usage (5, index 0); ps_2_0 declarations carry none");
+  // The same with usage index 3 (bits 19:16) on v0.
+  EXPECT_EQ(firstProblem({0xFFFF0200, 0x0200001F, 0x80030000, 0x900F0000, 0x02000001, 0x800F0800,
+                          0x90E40000, 0x0000FFFF}),
+            "dcl of v0 has a usage (0, index 3); ps_2_0 declarations carry none");
+}
+
 TEST(ValidatorTokens, DclUsageBeyondSampleIsRejected) {
   using namespace refx::shader;
   // vs_2_0: dcl v0 with usage 14 in its usage token (0x8000000E; D3DDECLUSAGE_SAMPLE = 13

@@ -1,7 +1,8 @@
 // dcl: which register files a version declares (v# everywhere that has dcl, o# and
 // s# in vs_3_0, t# in ps_2_x, s# from ps_2_0, vPos/vFace in ps_3_0), within their
 // counts, each once (vs_3_0 outputs may share an o# with disjoint masks), with a
-// texture type exactly on samplers (and no usage on them), a D3DDECLUSAGE value, a non-empty mask, no
+// texture type exactly on samplers (and no usage on them), a D3DDECLUSAGE value (none
+// in ps_2_x), a non-empty mask, no
 // shift or _sat, and _centroid only on pixel-shader inputs.
 #include "shader/validate/check.h"
 
@@ -62,7 +63,11 @@ class DclCheck final : public Check {
       ctx.declared[registerKey(d.type, d.index)] = 0xF;
       return;
     }
-    if (uint8_t(in.usage) > uint8_t(DeclUsage::Sample))
+    // ps_2_0/2_x: the usage token of a v#/t# dcl is bit 31 alone (no usage in the text).
+    if (!vs && v.major == 2 && (in.usage != DeclUsage::Position || in.usageIndex != 0))
+      ctx.error(in, "V1616", "dcl of {} has a usage ({}, index {}); {} declarations carry none",
+                ctx.reg(d.type, d.index), int(in.usage), int(in.usageIndex), ctx.name);
+    else if (uint8_t(in.usage) > uint8_t(DeclUsage::Sample))
       ctx.error(in, "V1616", "dcl of {} has usage {}; D3DDECLUSAGE ends at 13 (sample)", ctx.reg(d.type, d.index),
                 int(in.usage));
     uint8_t& m = ctx.declared[registerKey(d.type, d.index)];
