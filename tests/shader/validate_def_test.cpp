@@ -28,12 +28,23 @@ TEST(ValidatorTokens, DefTakesNoModifier) {
 TEST(ValidatorTokens, DefbIsFalseOrTrue) {
   using namespace refx::shader;
   // vs_2_0: defb b1 with the value 0x00100001 (TRUE is 1); then defb b2, true is fine.
-  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200002F, 0xE0010801, 0x00100001,
-                                        0x0200002F, 0xE0010802, 0x00000001, 0x0000FFFF};
+  const std::vector<uint32_t> tokens = {0xFFFE0200, 0x0200002F, 0xE00F0801, 0x00100001,
+                                        0x0200002F, 0xE00F0802, 0x00000001, 0x0000FFFF};
   const std::vector<Diagnostic> d = validate(decode(tokens));
   ASSERT_FALSE(d.empty());
   EXPECT_EQ(d[0].message, "defb b1: value 0x100001 is neither FALSE (0) nor TRUE (1)");
   for (size_t i = 1; i < d.size(); ++i) EXPECT_EQ(d[i].message.find("defb b2"), std::string::npos);
+}
+
+TEST(ValidatorTokens, DefsWriteTheWholeRegister) {
+  using namespace refx::shader;
+  // vs_3_0: defi i0 with write mask .xyw (0xF00B0000; the assembler writes .xyzw,
+  // 0xF00F0000, and has no text for any other mask), values 2, 0, 1, 0.
+  EXPECT_EQ(firstProblem({0xFFFE0300, 0x05000030, 0xF00B0000, 2, 0, 1, 0, 0x0000FFFF}),
+            "defi writes the whole register (write mask .xyzw), found .xyw");
+  // defb b1 with mask .x (0xE0010801).
+  EXPECT_EQ(firstProblem({0xFFFE0300, 0x0200002F, 0xE0010801, 1, 0x0000FFFF}),
+            "defb writes the whole register (write mask .xyzw), found .x");
 }
 
 }  // namespace

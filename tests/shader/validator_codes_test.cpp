@@ -122,7 +122,7 @@ std::vector<CodeCase> codeCases() {
   add("V1602", fromTokens({0xFFFE0200, 0x0200001F, 0x80000000, 0x900F0000, 0x05000030, 0xF42F0000, 4, 0, 1, 0,
                            0x03000014, 0xC00F0000, 0x90E40000, 0xA0E40000, 0x0000FFFF}));
   // defb b1 = 0x00100001: neither FALSE (0) nor TRUE (1).
-  add("V1603", fromTokens({0xFFFE0200, 0x0200002F, 0xE0010801, 0x00100001, 0x0000FFFF}));
+  add("V1603", fromTokens({0xFFFE0200, 0x0200002F, 0xE00F0801, 0x00100001, 0x0000FFFF}));
   add("V1604", read("ps_1_1\ndef c0, 1.5, 0, 0, 0\nmov r0, c0"));     // ps_1_x constants in [-1, 1]
   add("V1605", readRaw("vs_2_0\ndefi i0, 300, 0, 1, 0\ndcl_position v0\nmov oPos, v0"));  // count ≤ 255
   add("V1610", read("vs_2_0\ndcl_position oPos\nmov oPos, c0"));     // vs_2_0 declares no outputs

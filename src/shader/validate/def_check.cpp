@@ -1,5 +1,5 @@
 // def / defi / defb: each defines its own register file (c#, i#, b#) within the
-// version's count, takes no modifier, and holds values the version can represent:
+// version's count, writes all of it (mask .xyzw), takes no modifier, and holds values the version can represent:
 // ps_1_x constants lie in [-1, 1], integer constants are loop counts (0..255), starts
 // (0..255) and steps (-128..127), BOOL constants are FALSE (0) or TRUE (1).
 #include <cmath>
@@ -25,6 +25,12 @@ class DefCheck final : public Check {
     if (in.dst.shift || in.dst.resultMod) {
       ctx.error(in, "V1602", "{} takes no instruction modifier", ctx.op(in));
       return;
+    }
+    // The assembler writes .xyzw and has no text for another mask, so nothing else could
+    // round-trip.
+    if ((in.dst.writeMask & 0xF) != 0xF) {
+      ctx.error(in, "V1602", "{} writes the whole register (write mask .xyzw), found {}", ctx.op(in),
+                in.dst.writeMask & 0xF ? maskName(in.dst.writeMask & 0xF) : "an empty mask");
     }
     const RegisterRule* r = findRegisterRule(ctx.rules, want);
     if (!r) {
