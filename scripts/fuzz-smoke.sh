@@ -1,7 +1,10 @@
 #!/bin/sh
 # Runs every fuzz target (fuzz/fuzz_NAME.cpp) for SECONDS (default 20) on its seed
 # corpus fuzz/seeds/NAME, as many at once as there are cores, from the sanitized build
-# (scripts/sanitize-build.sh). New inputs go to a scratch corpus that is thrown away;
+# (scripts/sanitize-build.sh). The mutations come from a fixed random seed (FUZZ_SEED,
+# default 1), so a run explores the same inputs in the same order on every machine (a
+# faster machine just gets further): a failure here reproduces, and a longer run with the
+# same seed covers what a shorter one does. Open-ended fuzzing: scripts/fuzz.sh. New inputs go to a scratch corpus that is thrown away;
 # a crash, sanitizer report, leak or timeout fails the run and its input is kept in
 # fuzz-corpus/NAME-artifacts/ (reproduce with build-sanitize/fuzz/fuzz_NAME FILE).
 #   scripts/fuzz-smoke.sh [SECONDS]
@@ -15,7 +18,7 @@ if [ "${1:-}" = "--one" ]; then  # one target: --one NAME SECONDS SCRATCH
   seeds=
   [ -d "fuzz/seeds/$name" ] && seeds=fuzz/seeds/$name
   # shellcheck disable=SC2086
-  if "./build-sanitize/fuzz/fuzz_$name" -max_total_time="$seconds" -max_len=65536 \
+  if "./build-sanitize/fuzz/fuzz_$name" -max_total_time="$seconds" -seed="${FUZZ_SEED:-1}" -max_len=65536 \
        -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
        -artifact_prefix="fuzz-corpus/$name-artifacts/" "$scratch/$name" $seeds \
        >"$scratch/$name.log" 2>&1; then
