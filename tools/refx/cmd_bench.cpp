@@ -1,11 +1,13 @@
 // `refx bench`: Mpixels/s of the device on the workloads llvmpipe is measured on
-// (../shared/anchors/llvmpipe_bench): a full-screen quad and a lit sphere, textured
-// (`texture`, fixed function), or shaded by RacorX6's ps.1.1 diffuse bump shader
+// (../shared/anchors/llvmpipe_bench): a full-screen quad and a lit sphere, textured by
+// the anchor's ps.1.1 `tex t0; mov r0, t0` (`texture`), or shaded by RacorX6's ps.1.1
+// diffuse bump shader
 // (`racorx6`, llvmpipe's `diffuse`), RacorX9's ps.1.1 diffuse + specular shader
 // (`racorx9`, llvmpipe's `specular`) or the HLSL point light of data/hlsl compiled by
 // refx (`phong`, llvmpipe's `phong`), with the same textures, geometry and lights; and
 // RacorX10 / RacorX11's multi-pass frames (`racorx10`, `racorx11`, no llvmpipe
-// counterpart) on the same geometry. Each row also gives the cycles per pixel the cores
+// counterpart) on the same geometry; `fftexture` is the fixed-function MODULATE of the
+// texture and the lit diffuse colour (no llvmpipe counterpart). Each row also gives the cycles per pixel the cores
 // spent and the cycles the workload's FP32 arithmetic needs at the core's peak.
 #include <charconv>
 #include <chrono>
@@ -60,9 +62,12 @@ struct Workload {
   int flopsPerPixel;
 };
 constexpr Workload kWorkloads[] = {
-    // texture: MODULATE texture x diffuse: 4 mul = 4; interpolation of uv (2) and the
+    // texture: tex t0; mov r0, t0: interpolation of uv (2) = 2 x 5 + 5 = 15; one
+    // sample 50.                                                              15 + 50 = 65
+    {"texture", 65},
+    // fftexture: MODULATE texture x diffuse: 4 mul = 4; interpolation of uv (2) and the
     // diffuse color (4) = 6 x 5 + 5 = 35; one sample 50.                   4 + 35 + 50 = 89
-    {"texture", 89},
+    {"fftexture", 89},
     // racorx6: dp3 r1, t1_bx2, v0_bx2 = 2 x 3 x 2 (bx2) + 5 (dp3); mul r0 4 = 21;
     // t0.xy t1.xy v0.xyz = 7 x 5 + 5 = 40; two samples 100.               21 + 40 + 100 = 161
     {"racorx6", 161},
@@ -261,8 +266,12 @@ SphereCamera sphereCamera(int w, int h, float rotationY) {
   return c;
 }
 
+// The anchor's texture workload (W1) as it wrote it in ps.1.1.
+constexpr const char* kTextureBenchPS = "ps.1.1\ntex t0\nmov r0, t0\n";
+
 // RacorX6 / RacorX9 on the anchor's scene: colour map in stage 0, normal map in stage
-// 1, the seeds' ps.1.1 shader (data/shaders), the anchor's vertex shader and lights.
+// 1, the seeds' ps.1.1 shader (data/shaders), the anchor's vertex shader and lights;
+// `texture`: the same with the anchor's W1 pixel shader.
 void setupShaderWorkload(Device& dev, const Scene& s, const std::string& workload, const TexturePtr& color,
                          const TexturePtr& normal, int w, int h) {
   for (int st = 0; st < 2; ++st) {
@@ -273,7 +282,11 @@ void setupShaderWorkload(Device& dev, const Scene& s, const std::string& workloa
   }
   scene::bindMesh(dev, s.mesh);
   dev.setVertexShader(dev.createVertexShader(shader::assembleTokens(kRacorXBenchVS, "<bench vs>")));
-  dev.setPixelShader(scene::racorx::loadPixelShader(dev, workload == "racorx6" ? "racorx6_ps11.psh" : "racorx9_ps11.psh"));
+  if (workload == "texture")
+    dev.setPixelShader(dev.createPixelShader(shader::assembleTokens(kTextureBenchPS, "<bench ps>")));
+  else
+    dev.setPixelShader(
+        scene::racorx::loadPixelShader(dev, workload == "racorx6" ? "racorx6_ps11.psh" : "racorx9_ps11.psh"));
   Matrix mvp = Matrix::identity();
   Vec3 light{0.3f, 0.4f, -1.0f}, eye{0, 0, -2.0f};  // the anchor's quad light and eye, facing -z
   if (s.sphere) {
@@ -495,7 +508,7 @@ int runBench(const BenchOptions& o) {
               "Mpix/s", "px/frame", "cyc/px", "flop-cyc/px");
   for (const auto& wl : workloads) {
     const Workload& workload = *findWorkload(wl);
-    const bool shaded = wl != "texture";
+    const bool shaded = wl != "fftexture";
     const bool multipass = wl == "racorx10" || wl == "racorx11";
     if (shaded && !normal) normal = bumpNormalTexture(1024);
     for (const auto& geom : geoms) {
@@ -589,7 +602,7 @@ Action addBenchCommand(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "measure Mpixels/s and cycles/pixel on the llvmpipe anchor's workloads");
   cmd->add_option("--workload", o->workloads,
-                  "comma-separated workloads: texture, racorx6, racorx9, phong, racorx10, racorx11")
+                  "comma-separated workloads: texture, racorx6, racorx9, phong, racorx10, racorx11, fftexture")
       ->capture_default_str();
   cmd->add_option("--geom", o->geoms, "comma-separated geometries: quad, sphere")->capture_default_str();
   cmd->add_option("--threads", o->threads, "comma-separated thread counts")->capture_default_str();
