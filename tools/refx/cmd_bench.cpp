@@ -65,9 +65,6 @@ constexpr Workload kWorkloads[] = {
     // texture: tex t0; mov r0, t0: interpolation of uv (2) = 2 x 5 + 5 = 15; one
     // sample 50.                                                              15 + 50 = 65
     {"texture", 65},
-    // fftexture: MODULATE texture x diffuse: 4 mul = 4; interpolation of uv (2) and the
-    // diffuse color (4) = 6 x 5 + 5 = 35; one sample 50.                   4 + 35 + 50 = 89
-    {"fftexture", 89},
     // racorx6: dp3 r1, t1_bx2, v0_bx2 = 2 x 3 x 2 (bx2) + 5 (dp3); mul r0 4 = 21;
     // t0.xy t1.xy v0.xyz = 7 x 5 + 5 = 40; two samples 100.               21 + 40 + 100 = 161
     {"racorx6", 161},
@@ -99,6 +96,9 @@ constexpr Workload kWorkloads[] = {
     //   Attenuation: as RacorX10's 128, blend dest x src 4                      = 132
     //   mean (215 + 235 + 132) / 3                                              = 194
     {"racorx11", 194},
+    // fftexture: MODULATE texture x diffuse: 4 mul = 4; interpolation of uv (2) and the
+    // diffuse color (4) = 6 x 5 + 5 = 35; one sample 50.                   4 + 35 + 50 = 89
+    {"fftexture", 89},
 };
 
 const Workload* findWorkload(const std::string& name) {
