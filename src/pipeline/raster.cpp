@@ -9,6 +9,7 @@
 
 #include "ff_pixel.h"
 #include "output_merger.h"
+#include "raster_fill.h"
 #include "raster_interpolate.h"
 #include "refx/core/cpu_features.h"
 #include "refx/exec/lower.h"
@@ -135,6 +136,8 @@ struct TileWorker {
   exec::BatchRegisters regs;
   std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations, in order
   InterpolateInputsFn interpolateInputs = nullptr;
+  LazyFill lazyFill;       // the draw's
+  PendingBlocks pending;   // the current tile's
   alignas(64) float z[N];
   alignas(64) float invW[N];
   alignas(64) float w[N];  // 1 / invW
@@ -181,6 +184,9 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
                 TileWorker& w, uint64_t& shaded) {
   const float* pl = d.planes.data() + p.planeOffset;
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
+  // FillParts of this block the deferred Clear has yet to write (lazyFill: the batch
+  // tests against and writes over the fill's values).
+  uint32_t fillLeft = w.lazyFill.enabled && w.pending.take(bx, by) ? w.lazyFill.parts : 0;
   v8f fx[2], fy[2];
   for (int h = 0; h < 2; ++h) {
     fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
@@ -203,8 +209,19 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
     }
   }
   if (d.earlyDepth) {
-    mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, w.z, d.depthWrite);
-    if (!mask) return;
+    if (fillLeft & kFillDepth) {  // the block's depth is the fill's z in every lane
+      mask = depthPassAgainst(d.depthFunc, mask, w.z, d.fill.z);
+      if (d.depthWrite) {
+        storeBlockDepthOver(d, bx, by, mask, w.z, d.fill.z);
+        fillLeft &= ~kFillDepth;
+      }
+    } else {
+      mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, w.z, d.depthWrite);
+    }
+    if (!mask) {
+      if (fillLeft) fillBlock(d, bx, by, fillLeft);
+      return;
+    }
   }
   w.interpolateInputs(pl + 6, w.inputTargets.data(), w.inputTargets.size(), ox, oy, w.invW, w.w);
   if (d.usesPosition) {
@@ -233,6 +250,16 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
     for (int l = 0; l < N; ++l) w.z[l] = std::clamp(z[l], 0.0f, 1.0f);
   }
   shaded += static_cast<uint64_t>(__builtin_popcount(mask));
+  if (fillLeft) {
+    // With a live lane target 0 is written whole by the opaque store over the fill
+    // (lazyFill.overwritesColor); the rest is filled.
+    const uint32_t over = mask ? fillLeft & kFillColor0 : 0;
+    if (fillLeft & ~over) fillBlock(d, bx, by, fillLeft & ~over);
+    if (over) {
+      storeOpaqueOver(d.targets[0], bx, by, mask, w.regs.outputs[0].c, d.fill.colorValue);
+      return;
+    }
+  }
   if (!mask) return;
   (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
 }
@@ -243,7 +270,7 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
   const int x0 = tx * kTileSize, y0 = ty * kTileSize;
   const int x1 = std::min(x0 + kTileSize, d.width) - 1, y1 = std::min(y0 + kTileSize, d.height) - 1;
   uint64_t count = 0;  // local: the per-thread counters share cache lines
-  applyFill(d.fill, d.depth, x0, y0, x1 + 1, y1 + 1);
+  beginTileFill(d, w.lazyFill, x0, y0, x1 + 1, y1 + 1, w.pending);
   for (uint32_t pi : bins.lists[tile]) {
     const Primitive& p = d.prims[pi];
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
@@ -260,6 +287,7 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
       }
     }
   }
+  finishTileFill(d, w.pending);
   shaded += count;
 }
 
@@ -318,6 +346,7 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
         exec::prepare(*draw.pixelProgram, draw.execContext, w.regs, draw.prepareOptions);
     if (draw.pixelBuild && &w == &workers[0]) *draw.pixelBuild = info;
     w.interpolateInputs = chooseInterpolateInputs();
+    w.lazyFill = lazyFillFor(draw);
     for (const InterpolatedInput& in : draw.inputs)
       w.inputTargets.push_back({w.regs.inputs[in.input].c[in.component], in.flat});
   }
