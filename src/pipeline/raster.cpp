@@ -186,7 +186,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
   // FillParts of this block the deferred Clear has yet to write (lazyFill: the batch
   // tests against and writes over the fill's values).
-  uint32_t fillLeft = w.lazyFill.enabled && w.pending.take(bx, by) ? w.lazyFill.parts : 0;
+  uint32_t fillLeft = w.lazyFill.parts && w.pending.take(bx, by) ? w.lazyFill.parts : 0;
   v8f fx[2], fy[2];
   for (int h = 0; h < 2; ++h) {
     fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
@@ -211,10 +211,8 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   if (d.earlyDepth) {
     if (fillLeft & kFillDepth) {  // the block's depth is the fill's z in every lane
       mask = depthPassAgainst(d.depthFunc, mask, w.z, d.fill.z);
-      if (d.depthWrite) {
-        storeBlockDepthOver(d, bx, by, mask, w.z, d.fill.z);
-        fillLeft &= ~kFillDepth;
-      }
+      storeBlockDepthOver(d, bx, by, mask, w.z, d.fill.z);  // (lazy depth: a depth write)
+      fillLeft &= ~kFillDepth;
     } else {
       mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, w.z, d.depthWrite);
     }
@@ -250,15 +248,13 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
     for (int l = 0; l < N; ++l) w.z[l] = std::clamp(z[l], 0.0f, 1.0f);
   }
   shaded += static_cast<uint64_t>(__builtin_popcount(mask));
-  if (fillLeft) {
-    // With a live lane target 0 is written whole by the opaque store over the fill
-    // (lazyFill.overwritesColor); the rest is filled.
-    const uint32_t over = mask ? fillLeft & kFillColor0 : 0;
-    if (fillLeft & ~over) fillBlock(d, bx, by, fillLeft & ~over);
-    if (over) {
-      storeOpaqueOver(d.targets[0], bx, by, mask, w.regs.outputs[0].c, d.fill.colorValue);
+  if (fillLeft) {  // target 0's fill (the depth's is written by now)
+    if (!mask) {
+      fillBlock(d, bx, by, fillLeft);
       return;
     }
+    storeOpaqueOver(d.targets[0], bx, by, mask, w.regs.outputs[0].c, d.fill.colorValue);
+    return;
   }
   if (!mask) return;
   (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
@@ -287,7 +283,7 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
       }
     }
   }
-  finishTileFill(d, w.pending);
+  finishTileFill(d, w.lazyFill, w.pending);
   shaded += count;
 }
 

@@ -13,28 +13,27 @@ using namespace d3d;
 LazyFill lazyFillFor(const RasterDraw& d) {
   LazyFill lazy;
   const RasterDraw::Fill& f = d.fill;
-  if (f.color) {
-    if (f.colorTargets[0].data) lazy.parts |= kFillColor0;
-    for (size_t i = 1; i < f.colorTargets.size(); ++i)
-      if (f.colorTargets[i].data) lazy.parts |= kFillOtherColors;
-  }
-  if (d.depth && f.depth) lazy.parts |= kFillDepth;
-  if (d.depth && f.stencil) lazy.parts |= kFillStencil;
-  // Only target 0's colour and the depth are ever overwritten by a batch.
-  if (!(lazy.parts & (kFillColor0 | kFillDepth))) return lazy;
+  lazy.now = f;
+  lazy.later = RasterDraw::Fill{};
+  lazy.later.rect = f.rect;
+  lazy.later.colorValue = f.colorValue;
+  lazy.later.z = f.z;
   const ColorTarget& t = d.targets[0];
   bool opaque = t.data && t.data == f.colorTargets[0].data && !t.isFloat && t.writeMask == 0xf &&
                 !d.blend.enable && !d.alphaTest && !d.stencil && !d.srgbWrite && !d.dither &&
                 (!d.depthTest || d.earlyDepth);
   for (size_t i = 1; i < d.targets.size(); ++i) opaque &= !d.targets[i].data;
-  lazy.overwritesColor = opaque;
-  // A pending part the draw reads must be filled before it is read: target 0 when the
-  // merge may keep some of its pixels, the depth when tested in the merge (the early
-  // test compares with the fill's z instead), the stencil when tested.
-  if ((lazy.parts & kFillColor0) && !opaque) return lazy;
-  if ((lazy.parts & kFillDepth) && d.depthTest && !d.earlyDepth) return lazy;
-  if ((lazy.parts & kFillStencil) && d.stencil) return lazy;
-  lazy.enabled = true;
+  if (f.color && opaque) {
+    lazy.parts |= kFillColor0;
+    lazy.later.color = true;
+    lazy.later.colorTargets[0] = f.colorTargets[0];
+    lazy.now.colorTargets[0] = ColorTarget{};
+  }
+  if (d.depth && f.depth && d.earlyDepth && d.depthWrite) {
+    lazy.parts |= kFillDepth;
+    lazy.later.depth = true;
+    lazy.now.depth = false;
+  }
   return lazy;
 }
 
@@ -47,21 +46,26 @@ void beginTileFill(const RasterDraw& d, const LazyFill& lazy, int x0, int y0, in
   const int rx0 = std::max(x0, r.left), ry0 = std::max(y0, r.top);
   const int rx1 = std::min(x1, r.right), ry1 = std::min(y1, r.bottom);
   if (rx0 >= rx1 || ry0 >= ry1) return;
-  // The whole blocks inside the rect (and so inside the target: the rect is).
-  const int ix0 = (rx0 + 3) & ~3, iy0 = (ry0 + 3) & ~3, ix1 = rx1 & ~3, iy1 = ry1 & ~3;
-  if (!lazy.enabled || ix0 >= ix1 || iy0 >= iy1) {
+  if (!lazy.parts) {
     applyFill(d.fill, d.depth, rx0, ry0, rx1, ry1);
     return;
   }
-  applyFill(d.fill, d.depth, rx0, ry0, rx1, iy0);  // above the blocks
-  applyFill(d.fill, d.depth, rx0, iy1, rx1, ry1);  // below
-  applyFill(d.fill, d.depth, rx0, iy0, ix0, iy1);  // left
-  applyFill(d.fill, d.depth, ix1, iy0, rx1, iy1);  // right
+  applyFill(lazy.now, d.depth, rx0, ry0, rx1, ry1);
+  // The whole blocks inside the rect (and so inside the target: the rect is).
+  const int ix0 = (rx0 + 3) & ~3, iy0 = (ry0 + 3) & ~3, ix1 = rx1 & ~3, iy1 = ry1 & ~3;
+  if (ix0 >= ix1 || iy0 >= iy1) {
+    applyFill(lazy.later, d.depth, rx0, ry0, rx1, ry1);
+    return;
+  }
+  applyFill(lazy.later, d.depth, rx0, ry0, rx1, iy0);  // above the blocks
+  applyFill(lazy.later, d.depth, rx0, iy1, rx1, ry1);  // below
+  applyFill(lazy.later, d.depth, rx0, iy0, ix0, iy1);  // left
+  applyFill(lazy.later, d.depth, ix1, iy0, rx1, iy1);  // right
   const uint32_t bits = ((1u << ((ix1 - x0) >> 2)) - 1) & ~((1u << ((ix0 - x0) >> 2)) - 1);
   for (int y = iy0; y < iy1; y += 4) pending.rows[(y - y0) >> 2] = uint16_t(bits);
 }
 
-void finishTileFill(const RasterDraw& d, PendingBlocks& pending) {
+void finishTileFill(const RasterDraw& d, const LazyFill& lazy, PendingBlocks& pending) {
   for (int r = 0; r < kTileSize / 4; ++r) {
     uint32_t bits = pending.rows[r];
     pending.rows[r] = 0;
@@ -69,35 +73,22 @@ void finishTileFill(const RasterDraw& d, PendingBlocks& pending) {
     while (bits) {  // each run of pending blocks as one rectangle
       const int c0 = __builtin_ctz(bits);
       const int c1 = c0 + __builtin_ctz(~(bits >> c0));
-      applyFill(d.fill, d.depth, pending.x0 + 4 * c0, y, pending.x0 + 4 * c1, y + 4);
-      bits &= ~(((1u << c1) - 1));
+      applyFill(lazy.later, d.depth, pending.x0 + 4 * c0, y, pending.x0 + 4 * c1, y + 4);
+      bits &= ~((1u << c1) - 1);
     }
   }
 }
 
 void fillBlock(const RasterDraw& d, int bx, int by, uint32_t parts) {
   const RasterDraw::Fill& f = d.fill;
-  for (size_t i = 0; i < f.colorTargets.size(); ++i) {
-    const ColorTarget& t = f.colorTargets[i];
-    if (!t.data || !(parts & (i == 0 ? kFillColor0 : kFillOtherColors))) continue;
-    for (int y = by; y < by + 4; ++y) {
-      uint8_t* row = t.data + size_t(y) * t.pitch;
-      if (t.isFloat) {
-        fillColorRow(row, bx, bx + 4, f.colorValue, true);
-      } else {
-        const uint32_t v[4] = {f.colorValue, f.colorValue, f.colorValue, f.colorValue};
-        std::memcpy(row + size_t(bx) * 4, v, sizeof v);
-      }
-    }
+  if (parts & kFillColor0) {
+    const ColorTarget& t = f.colorTargets[0];
+    const uint32_t v[4] = {f.colorValue, f.colorValue, f.colorValue, f.colorValue};
+    for (int y = by; y < by + 4; ++y) std::memcpy(t.data + size_t(y) * t.pitch + size_t(bx) * 4, v, sizeof v);
   }
-  if (!(parts & (kFillDepth | kFillStencil))) return;
-  for (int y = by; y < by + 4; ++y) {
-    const size_t row = size_t(y) * d.depth->width + bx;  // parts beyond colour: a depth surface
-    if (parts & kFillDepth) {
-      const float v[4] = {f.z, f.z, f.z, f.z};
-      std::memcpy(d.depth->depth.data() + row, v, sizeof v);
-    }
-    if (parts & kFillStencil) std::memset(d.depth->stencil.data() + row, f.stencilValue, 4);
+  if (parts & kFillDepth) {
+    const float v[4] = {f.z, f.z, f.z, f.z};
+    for (int y = by; y < by + 4; ++y) std::memcpy(d.depth->depth.data() + size_t(y) * d.width + bx, v, sizeof v);
   }
 }
 

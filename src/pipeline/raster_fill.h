@@ -1,10 +1,11 @@
-// A Clear deferred to a draw (RasterDraw::Fill), written block by block. Each 4x4 block
-// of a tile inside the fill rect is "pending" until the draw's first batch on it: when
-// the draw's depth test and merge allow, that batch tests against the fill's values
-// and writes the whole block at once, its live lanes with the batch's results and the
-// others with the fill's (so the block is written once instead of filled, then
-// overwritten); otherwise the block is filled first. At the tile's end every block
-// still pending is filled. Every pixel ends as if the tile had been filled first.
+// A Clear deferred to a draw (RasterDraw::Fill), written block by block where the draw
+// overwrites it: each 4x4 block of a tile inside the fill rect is "pending" until the
+// draw's first batch on it, which tests against the fill's z and writes the whole
+// block at once, its live lanes with the batch's results and the others with the
+// fill's values (the block is written once instead of filled, then overwritten). The
+// parts of the fill the draw does not overwrite so (other targets, stencil, a depth it
+// does not write) are filled when the tile starts; at the tile's end every block still
+// pending is filled. Every pixel ends as if the tile had been filled before it was shaded.
 #pragma once
 #include <cstdint>
 
@@ -12,24 +13,23 @@
 
 namespace refx::pipeline {
 
-// The parts of a block a deferred Clear writes.
+// The parts of a block whose fill may wait for the draw's batches.
 enum FillPart : uint32_t {
-  kFillColor0 = 1,       // render target 0
-  kFillOtherColors = 2,  // render targets 1-3
-  kFillDepth = 4,
-  kFillStencil = 8,
+  kFillColor0 = 1,  // render target 0, 8-bit
+  kFillDepth = 2,
 };
 
-// What a draw's batches may do with its deferred Clear, decided once per draw.
+// How a draw's batches deal with its deferred Clear, decided once per draw.
 struct LazyFill {
-  bool enabled = false;  // blocks wait for the batches (else tiles are filled first)
-  // The draw's merge stores the live lanes of a batch into target 0 as they are (an
-  // opaque merge into the one 8-bit target the Clear fills: no blend, alpha test,
-  // stencil, sRGB, dither or write mask; the depth tested early or not at all).
-  bool overwritesColor = false;
-  uint32_t parts = 0;  // FillParts the Clear writes
+  uint32_t parts = 0;      // FillParts that wait for the batches; 0: none
+  RasterDraw::Fill now;    // the rest of the fill, written when a tile starts
+  RasterDraw::Fill later;  // the fill of `parts`, for blocks no batch writes
 };
 
+// kFillColor0 where the draw's merge stores the live lanes of a batch into target 0 as
+// they are (an opaque merge into the one 8-bit target the Clear fills: no blend, alpha
+// test, stencil, sRGB, dither or write mask; depth tested early or not at all);
+// kFillDepth where the draw tests the depth early and writes it.
 LazyFill lazyFillFor(const RasterDraw& d);
 
 // The blocks of one tile whose fill is pending: bit c of rows[r] is the block at
@@ -48,14 +48,13 @@ struct PendingBlocks {
   }
 };
 
-// Starts tile [x0, x1) x [y0, y1): with `lazy` enabled, the blocks wholly inside the
-// fill rect become pending and the rest of the rect in the tile is filled now;
-// otherwise all of it is filled now.
+// Starts tile [x0, x1) x [y0, y1): fills lazy.now, and the rest of the fill rect in the
+// tile except the whole blocks inside it, which become pending.
 void beginTileFill(const RasterDraw& d, const LazyFill& lazy, int x0, int y0, int x1, int y1,
                    PendingBlocks& pending);
 
 // Fills every block of the tile still pending.
-void finishTileFill(const RasterDraw& d, PendingBlocks& pending);
+void finishTileFill(const RasterDraw& d, const LazyFill& lazy, PendingBlocks& pending);
 
 // Writes `parts` of the fill to block (bx, by), which lies inside the fill rect.
 void fillBlock(const RasterDraw& d, int bx, int by, uint32_t parts);
