@@ -94,6 +94,63 @@ inline void storeOpaque(const ColorTarget& t, int width, int height, int bx, int
       reinterpret_cast<uint32_t*>(t.data + size_t(by + kLaneY[l]) * t.pitch)[bx + kLaneX[l]] = packed[l];
 }
 
+// The opaque store of a batch into a whole 4x4 block of 8-bit target t (inside it) that
+// holds `under` (a D3DCOLOR) in every pixel: the live lanes of `mask` get the colour as
+// the opaque merge converts it, the others `under`, all 16 written at once.
+inline void storeOpaqueOver(const ColorTarget& t, int bx, int by, uint16_t mask, const float (*color)[kBatchLanes],
+                     uint32_t under) {
+  const v8i alphaOr = v8i{} + int32_t(t.hasAlpha ? 0u : 0xff000000u);
+  const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
+  const v8i keep = v8i{} + int32_t(under);
+  for (int k = 0; k < kBatchLanes; k += 8) {
+    v8i q[4];
+    for (int c = 0; c < 4; ++c) {
+      v8f v;
+      __builtin_memcpy(&v, color[c] + k, sizeof v);
+      q[c] = toUnorm8x8(v);
+    }
+    const v8i p = ((q[3] << 24) | alphaOr) | (q[0] << 16) | (q[1] << 8) | q[2];
+    const v8i out = (laneBit & ((mask >> k) & 0xff)) != 0 ? p : keep;
+    // Lanes k..k+7 are rows k/4 and k/4 + 1: lanes 0,1,4,5 and 2,3,6,7 of the half.
+    const v4u r0 = __builtin_shufflevector(v8u(out), v8u(out), 0, 1, 4, 5);
+    const v4u r1 = __builtin_shufflevector(v8u(out), v8u(out), 2, 3, 6, 7);
+    uint8_t* row = t.data + size_t(by + k / 4) * t.pitch + size_t(bx) * 4;
+    __builtin_memcpy(row, &r0, sizeof r0);
+    __builtin_memcpy(row + t.pitch, &r1, sizeof r1);
+  }
+}
+
+// The depth test of a batch on a 4x4 block (inside the surface) that holds `under` in
+// every pixel, by cmp as depthRows: returns the live lanes of `mask` that pass and
+// writes the whole block, their z in them and `under` in the others.
+template <class Cmp>
+inline uint16_t depthRowsOver(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z, float under,
+                              Cmp cmp) {
+  uint32_t pass = 0;
+  const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
+  const v8f old = v8f{} + under;
+  for (int h = 0; h < 2; ++h) {
+    const int live = (mask >> (8 * h)) & 0xff;
+    float* row0 = d.depth->depth.data() + size_t(by + 2 * h) * d.width + bx;
+    v8f nz;
+    __builtin_memcpy(&nz, z + 8 * h, sizeof nz);
+    const v8i ok = cmp(nz, old) & ((laneBit & live) != 0);
+#if defined(__AVX__)
+    __m256 okf;
+    __builtin_memcpy(&okf, &ok, sizeof okf);
+    pass |= uint32_t(_mm256_movemask_ps(okf)) << (8 * h);
+#else
+    for (int l = 0; l < 8; ++l) pass |= uint32_t(ok[l] & 1) << (8 * h + l);
+#endif
+    const v8f r = ok ? nz : old;
+    const v4f r0 = __builtin_shufflevector(r, r, 0, 1, 4, 5);
+    const v4f r1 = __builtin_shufflevector(r, r, 2, 3, 6, 7);
+    __builtin_memcpy(row0, &r0, sizeof r0);
+    __builtin_memcpy(row0 + d.width, &r1, sizeof r1);
+  }
+  return uint16_t(pass);
+}
+
 // D3DCMPFUNC F on eight depths at once.
 template <uint32_t F>
 inline v8i compareDepths(v8f a, v8f b) {

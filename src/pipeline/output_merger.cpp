@@ -109,29 +109,6 @@ static inline uint8_t toUnorm8(float v) {
   return static_cast<uint8_t>(v * 255.0f + 0.5f);
 }
 
-void storeOpaqueOver(const ColorTarget& t, int bx, int by, uint16_t mask, const float (*color)[kBatchLanes],
-                     uint32_t under) {
-  const v8i alphaOr = v8i{} + int32_t(t.hasAlpha ? 0u : 0xff000000u);
-  const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
-  const v8i keep = v8i{} + int32_t(under);
-  for (int k = 0; k < kBatchLanes; k += 8) {
-    v8i q[4];
-    for (int c = 0; c < 4; ++c) {
-      v8f v;
-      __builtin_memcpy(&v, color[c] + k, sizeof v);
-      q[c] = toUnorm8x8(v);
-    }
-    const v8i p = ((q[3] << 24) | alphaOr) | (q[0] << 16) | (q[1] << 8) | q[2];
-    const v8i out = (laneBit & ((mask >> k) & 0xff)) != 0 ? p : keep;
-    // Lanes k..k+7 are rows k/4 and k/4 + 1: lanes 0,1,4,5 and 2,3,6,7 of the half.
-    const v4u r0 = __builtin_shufflevector(v8u(out), v8u(out), 0, 1, 4, 5);
-    const v4u r1 = __builtin_shufflevector(v8u(out), v8u(out), 2, 3, 6, 7);
-    uint8_t* row = t.data + size_t(by + k / 4) * t.pitch + size_t(bx) * 4;
-    __builtin_memcpy(row, &r0, sizeof r0);
-    __builtin_memcpy(row + t.pitch, &r1, sizeof r1);
-  }
-}
-
 // sRGB encoding of a linear value in [0,1] (IEC 61966-2-1).
 static float linearToSrgb(float c) {
   c = std::clamp(c, 0.0f, 1.0f);

@@ -24,12 +24,6 @@ uint16_t earlyDepthTest(const RasterDraw& d, int bx, int by, uint16_t mask, cons
 void mergeBatch(const RasterDraw& d, int bx, int by, uint16_t mask, const exec::LaneVec4* colors,
                 const float* z, bool depthAlreadyTested, bool counterClockwise);
 
-// The opaque store of a batch into a whole 4x4 block of 8-bit target t (inside it) that
-// holds `under` (a D3DCOLOR) in every pixel: the live lanes of `mask` get the colour as
-// the opaque merge converts it, the others `under`, all 16 written at once.
-void storeOpaqueOver(const ColorTarget& t, int bx, int by, uint16_t mask, const float (*color)[kBatchLanes],
-                     uint32_t under);
-
 // Quantises a colour channel to 8 bits: round to nearest, or with D3DRS_DITHERENABLE
 // floor(v * 255 + t) where t = (B + 0.5) / 16 and B is the 4x4 Bayer matrix entry of
 // pixel (x & 3, y & 3) -- the same value on average, a pattern instead of one step.

@@ -218,8 +218,10 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   }
   if (any ? d.earlyDepth : F != kNoDepth) {
     if (fillLeft & kFillDepth) {  // the block's depth is the fill's z in every lane
-      mask = depthPassAgainst(d.depthFunc, mask, w.z, d.fill.z);
-      storeBlockDepthOver(d, bx, by, mask, w.z, d.fill.z);  // (lazy depth: a depth write)
+      if constexpr (any)
+        mask = depthTestOverFill(d, bx, by, mask, w.z);
+      else
+        mask = depthRowsOver(d, bx, by, mask, w.z, d.fill.z, [](v8f a, v8f b) { return compareDepths<F>(a, b); });
       fillLeft &= ~kFillDepth;
     } else if (!any && bx + 4 <= d.width && by + 4 <= d.height) {
       mask = depthRows(d, bx, by, mask, w.z, Write, [](v8f a, v8f b) { return compareDepths<F>(a, b); });

@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
+
+#include "merge_kernels.h"
 
 namespace refx::pipeline {
 
@@ -92,58 +91,21 @@ void fillBlock(const RasterDraw& d, int bx, int by, uint32_t parts) {
   }
 }
 
-namespace {
-typedef float v8f __attribute__((vector_size(32)));
-typedef int32_t v8i __attribute__((vector_size(32)));
-
-template <class Cmp>
-uint16_t passingLanes(uint16_t mask, const float* z, float ref, Cmp cmp) {
-  uint32_t bits = 0;
-  const v8f r = v8f{} + ref;
-  for (int h = 0; h < 2; ++h) {
-    v8f v;
-    std::memcpy(&v, z + 8 * h, sizeof v);
-    const v8i pass = cmp(v, r);
-#if defined(__AVX__)
-    __m256 f;
-    std::memcpy(&f, &pass, sizeof f);
-    bits |= uint32_t(_mm256_movemask_ps(f)) << (8 * h);
-#else
-    for (int l = 0; l < 8; ++l) bits |= uint32_t(pass[l] & 1) << (8 * h + l);
-#endif
-  }
-  return uint16_t(mask & bits);
-}
-}  // namespace
-
-uint16_t depthPassAgainst(uint32_t func, uint16_t mask, const float* z, float ref) {
-  switch (func) {
-    case CMP_NEVER: return 0;
-    case CMP_LESS: return passingLanes(mask, z, ref, [](v8f a, v8f b) { return a < b; });
-    case CMP_EQUAL: return passingLanes(mask, z, ref, [](v8f a, v8f b) { return a == b; });
-    case CMP_LESSEQUAL: return passingLanes(mask, z, ref, [](v8f a, v8f b) { return a <= b; });
-    case CMP_GREATER: return passingLanes(mask, z, ref, [](v8f a, v8f b) { return a > b; });
-    case CMP_NOTEQUAL: return passingLanes(mask, z, ref, [](v8f a, v8f b) { return a != b; });
-    case CMP_GREATEREQUAL: return passingLanes(mask, z, ref, [](v8f a, v8f b) { return a >= b; });
-    default: return mask;
-  }
-}
-
-void storeBlockDepthOver(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z, float under) {
-  // Lanes 8h..8h+7 are rows 2h and 2h+1 as r0[0] r0[1] r1[0] r1[1] r0[2] r0[3] r1[2]
-  // r1[3] (quad-major, see core/batch.h).
-  const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
-  const v8f keep = v8f{} + under;
-  typedef float v4f __attribute__((vector_size(16)));
-  for (int h = 0; h < 2; ++h) {
-    v8f v;
-    std::memcpy(&v, z + 8 * h, sizeof v);
-    v = (laneBit & ((mask >> (8 * h)) & 0xff)) != 0 ? v : keep;
-    float* row0 = d.depth->depth.data() + size_t(by + 2 * h) * d.width + bx;
-    const v4f r0 = __builtin_shufflevector(v, v, 0, 1, 4, 5);
-    const v4f r1 = __builtin_shufflevector(v, v, 2, 3, 6, 7);
-    std::memcpy(row0, &r0, sizeof r0);
-    std::memcpy(row0 + d.width, &r1, sizeof r1);
+uint16_t depthTestOverFill(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z) {
+  const float under = d.fill.z;
+  switch (d.depthFunc) {
+    case CMP_NEVER: return depthRowsOver(d, bx, by, mask, z, under, [](v8f a, v8f b) { return compareDepths<CMP_NEVER>(a, b); });
+    case CMP_LESS: return depthRowsOver(d, bx, by, mask, z, under, [](v8f a, v8f b) { return compareDepths<CMP_LESS>(a, b); });
+    case CMP_EQUAL: return depthRowsOver(d, bx, by, mask, z, under, [](v8f a, v8f b) { return compareDepths<CMP_EQUAL>(a, b); });
+    case CMP_LESSEQUAL:
+      return depthRowsOver(d, bx, by, mask, z, under, [](v8f a, v8f b) { return compareDepths<CMP_LESSEQUAL>(a, b); });
+    case CMP_GREATER:
+      return depthRowsOver(d, bx, by, mask, z, under, [](v8f a, v8f b) { return compareDepths<CMP_GREATER>(a, b); });
+    case CMP_NOTEQUAL:
+      return depthRowsOver(d, bx, by, mask, z, under, [](v8f a, v8f b) { return compareDepths<CMP_NOTEQUAL>(a, b); });
+    case CMP_GREATEREQUAL:
+      return depthRowsOver(d, bx, by, mask, z, under, [](v8f a, v8f b) { return compareDepths<CMP_GREATEREQUAL>(a, b); });
+    default: return depthRowsOver(d, bx, by, mask, z, under, [](v8f a, v8f b) { return compareDepths<CMP_ALWAYS>(a, b); });
   }
 }
 

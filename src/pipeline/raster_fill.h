@@ -59,11 +59,9 @@ void finishTileFill(const RasterDraw& d, const LazyFill& lazy, PendingBlocks& pe
 // Writes `parts` of the fill to block (bx, by), which lies inside the fill rect.
 void fillBlock(const RasterDraw& d, int bx, int by, uint32_t parts);
 
-// The lanes of `mask` whose z passes depth function `func` against the stored `ref`.
-uint16_t depthPassAgainst(uint32_t func, uint16_t mask, const float* z, float ref);
-
-// Stores block (bx, by) of the depth buffer: z (batch order) in the lanes of `mask`,
-// `under` in the others.
-void storeBlockDepthOver(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z, float under);
+// The early depth test of a batch on a pending block whose depth is the fill's z:
+// returns the lanes of `mask` that pass and writes the whole block's depth (the draw
+// writes depth wherever kFillDepth waits), their z in them and the fill's in the others.
+uint16_t depthTestOverFill(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z);
 
 }  // namespace refx::pipeline
