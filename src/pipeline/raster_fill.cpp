@@ -109,4 +109,22 @@ uint16_t depthTestOverFill(const RasterDraw& d, int bx, int by, uint16_t mask, c
   }
 }
 
+bool overwritesPendingClear(const RasterDraw::Fill& pending, uint32_t flags, const Rect& r) {
+  if (pending.color || (!pending.depth && !pending.stencil)) return false;
+  if ((pending.depth && !(flags & CLEAR_ZBUFFER)) || (pending.stencil && !(flags & CLEAR_STENCIL))) return false;
+  const Rect& p = pending.rect;
+  return r.left <= p.left && r.top <= p.top && r.right >= p.right && r.bottom >= p.bottom;
+}
+
+void keepUntouchedDepthClear(RasterDraw& d, RasterDraw::Fill& pending) {
+  if (d.depthTest || d.stencil || (!d.fill.depth && !d.fill.stencil)) return;
+  pending = RasterDraw::Fill{};
+  pending.rect = d.fill.rect;
+  pending.depth = d.fill.depth;
+  pending.stencil = d.fill.stencil;
+  pending.z = d.fill.z;
+  pending.stencilValue = d.fill.stencilValue;
+  d.fill.depth = d.fill.stencil = false;
+}
+
 }  // namespace refx::pipeline

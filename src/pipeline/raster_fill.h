@@ -64,4 +64,13 @@ void fillBlock(const RasterDraw& d, int bx, int by, uint32_t parts);
 // writes depth wherever kFillDepth waits), their z in them and the fill's in the others.
 uint16_t depthTestOverFill(const RasterDraw& d, int bx, int by, uint16_t mask, const float* z);
 
+// Whether a Clear of `flags` (D3DCLEAR_*) over rect r writes all that `pending`, a Clear
+// not written yet, still has to: a depth or stencil clear alone that it covers.
+bool overwritesPendingClear(const RasterDraw::Fill& pending, uint32_t flags, const Rect& r);
+
+// Once draw d has taken the pending Clear: where d neither tests nor writes the depth and
+// stencil, their part of the fill goes back to `pending`, to be written when something
+// looks at them, or never where another Clear overwrites it first.
+void keepUntouchedDepthClear(RasterDraw& d, RasterDraw::Fill& pending);
+
 }  // namespace refx::pipeline

@@ -362,6 +362,76 @@ TEST(LazyClear, SecondDrawSeesTheFirst) {
   }
 }
 
+TEST(LazyClear, DepthClearOutlivesADrawWithoutDepth) {
+  // A draw without depth test or stencil leaves the depth and stencil of the Clear for
+  // later: the next draw that tests depth sees them, and so does the accessor.
+  auto dev = depthDevice(70, 37);
+  dev->setRenderState(RS_ZENABLE, ZB_FALSE);
+  dev->clear(CLEAR_TARGET | CLEAR_ZBUFFER | CLEAR_STENCIL, kClear, 0.5f, 3);
+  quad(*dev, 0, 0, 70, 37, kRed, 0.25f);  // no depth test: drawn everywhere
+  dev->setRenderState(RS_ZENABLE, ZB_TRUE);
+  quad(*dev, 0, 0, 35, 37, kGreen, 0.75f);  // 0.75 is not LESS than the cleared 0.5
+  quad(*dev, 35, 0, 70, 37, kGreen, 0.375f);
+  for (int y = 0; y < 37; ++y)
+    for (int x = 0; x < 70; ++x) {
+      ASSERT_EQ(pixel(*dev, x, y), x < 35 ? kRed : kGreen) << x << "," << y;
+      ASSERT_EQ(depthAt(*dev, x, y), x < 35 ? 0.5f : 0.375f) << x << "," << y;
+      ASSERT_EQ(stencilAt(*dev, x, y), 3) << x << "," << y;
+    }
+}
+
+TEST(LazyClear, DepthClearLeftPendingIsSeenThroughTheAccessor) {
+  auto dev = depthDevice(70, 37);
+  dev->setRenderState(RS_ZENABLE, ZB_FALSE);
+  dev->clear(CLEAR_TARGET | CLEAR_ZBUFFER | CLEAR_STENCIL, kClear, 0.5f, 3);
+  quad(*dev, 0, 0, 70, 37, kRed, 0.25f);
+  EXPECT_EQ(depthAt(*dev, 0, 0), 0.5f);
+  EXPECT_EQ(depthAt(*dev, 69, 36), 0.5f);
+  EXPECT_EQ(stencilAt(*dev, 33, 20), 3);
+}
+
+TEST(LazyClear, DepthClearLeftPendingThenAPartialClear) {
+  // The second Clear covers only [10, 50) x [6, 30): outside it the first one's 0.5 and
+  // stencil 3 must stay; inside, 0.25 and 4 (its stencil flag set).
+  for (uint32_t secondFlags : {uint32_t(CLEAR_ZBUFFER), uint32_t(CLEAR_ZBUFFER | CLEAR_STENCIL)}) {
+    auto dev = depthDevice(70, 37);
+    dev->setRenderState(RS_ZENABLE, ZB_FALSE);
+    dev->clear(CLEAR_TARGET | CLEAR_ZBUFFER | CLEAR_STENCIL, kClear, 0.5f, 3);
+    quad(*dev, 0, 0, 70, 37, kRed, 0.25f);
+    dev->setViewport(Viewport{10, 6, 40, 24, 0, 1});
+    dev->clear(secondFlags, kClear, 0.25f, 4);
+    dev->setViewport(Viewport{0, 0, 70, 37, 0, 1});
+    quad(*dev, 0, 0, 70, 37, kRed, 0.25f);
+    for (int y = 0; y < 37; ++y)
+      for (int x = 0; x < 70; ++x) {
+        const bool second = inside(x, y, 10, 6, 50, 30);
+        ASSERT_EQ(depthAt(*dev, x, y), second ? 0.25f : 0.5f) << x << "," << y;
+        ASSERT_EQ(stencilAt(*dev, x, y), second && (secondFlags & CLEAR_STENCIL) ? 4 : 3) << x << "," << y;
+      }
+  }
+}
+
+TEST(LazyClear, DepthClearLeftPendingIsReplacedByAWholeOne) {
+  // Frames of Clear(TARGET | ZBUFFER) and a draw without depth: each frame's depth
+  // clear replaces the last; the last one is what the surface holds.
+  auto dev = depthDevice(70, 37);
+  dev->setRenderState(RS_ZENABLE, ZB_FALSE);
+  for (float z : {0.125f, 0.25f, 0.375f}) {
+    dev->clear(CLEAR_TARGET | CLEAR_ZBUFFER, kClear, z, 0);
+    quad(*dev, 0, 0, 70, 37, kRed, 0.75f);
+  }
+  EXPECT_EQ(depthAt(*dev, 0, 0), 0.375f);
+  EXPECT_EQ(depthAt(*dev, 69, 36), 0.375f);
+  EXPECT_EQ(pixel(*dev, 40, 20), kRed);
+  // A whole Clear of the depth alone does not replace a pending stencil clear.
+  dev->clear(CLEAR_TARGET | CLEAR_ZBUFFER | CLEAR_STENCIL, kClear, 0.5f, 6);
+  quad(*dev, 0, 0, 70, 37, kRed, 0.75f);
+  dev->clear(CLEAR_TARGET | CLEAR_ZBUFFER, kClear, 0.25f, 0);
+  quad(*dev, 0, 0, 70, 37, kRed, 0.75f);
+  EXPECT_EQ(depthAt(*dev, 5, 5), 0.25f);
+  EXPECT_EQ(stencilAt(*dev, 5, 5), 6);
+}
+
 // Random frames on a device whose Clear is deferred and on one whose Clear is written
 // at once (its surfaces are held outside it): the same bytes, depths and stencils.
 struct Frame {
