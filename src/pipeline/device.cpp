@@ -6,6 +6,7 @@
 
 #include "draw_plan.h"
 #include "raster.h"
+#include "raster_fill.h"
 #include "state_support.h"
 #include "refx/core/diagnostics.h"
 #include "refx/shader/version_rules.h"
@@ -103,11 +104,12 @@ void Device::setDepthStencilSurface(DepthStencilPtr ds) {
 }
 
 void Device::clear(uint32_t flags, D3DColor color, float z, uint32_t stencil) {
-  resolveClear();
   const TexturePtr& target0 = targets_[0];
   const int w = target0 ? target0->width() : (depth_ ? depth_->width : 0);
   const int h = target0 ? target0->height() : (depth_ ? depth_->height : 0);
   const Rect r = activeRect(state_, w, h);
+  if (overwritesPendingClear(impl_->pendingClear, flags, r)) impl_->pendingClear = {};
+  resolveClear();
   bool target = (flags & CLEAR_TARGET) && target0;
   bool depth = depth_ && (flags & (CLEAR_ZBUFFER | CLEAR_STENCIL));
   if (r.top >= r.bottom || r.left >= r.right || (!target && !depth)) return;
@@ -419,6 +421,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   stats_.primitives += primitiveCount;
   d.fill = impl_->pendingClear;
   impl_->pendingClear = {};
+  keepUntouchedDepthClear(d, impl_->pendingClear);
   rasterize(d, impl_->pool);
   if (newPlan) {  // what runs the new plan's programs (compile time 0: compiled before)
     auto record = [&](const exec::Program& p, const exec::ProgramBuildInfo& b) {

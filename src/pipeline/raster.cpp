@@ -8,7 +8,9 @@
 #endif
 
 #include "ff_pixel.h"
+#include "merge_kernels.h"
 #include "output_merger.h"
+#include "raster_fill.h"
 #include "raster_interpolate.h"
 #include "refx/core/cpu_features.h"
 #include "refx/exec/lower.h"
@@ -135,14 +137,15 @@ struct TileWorker {
   exec::BatchRegisters regs;
   std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations, in order
   InterpolateInputsFn interpolateInputs = nullptr;
+  LazyFill lazyFill;       // the draw's
+  PendingBlocks pending;   // the current tile's
   alignas(64) float z[N];
   alignas(64) float invW[N];
   alignas(64) float w[N];  // 1 / invW
 };
 
-// Eight lanes as one value (GCC/Clang vector extensions): interpolation is vectorised
+// Eight lanes as one value (v8f, merge_kernels.h): interpolation is vectorised
 // whatever the compiler's loop heuristics decide, with the same IEEE operations.
-typedef float v8f __attribute__((vector_size(32)));
 inline v8f load8(const float* p) {
   v8f v;
   std::memcpy(&v, p, sizeof v);
@@ -177,10 +180,21 @@ void interpolateInputsAvx2(const float* planes, const InputTarget* targets, size
     evalPlane(planes, fx, fy, targets[i].flat ? nullptr : wv, targets[i].lanes);
 }
 
+// What shadeBatch is compiled for: kAnyState reads the draw's state at run time (every
+// draw); the others are for draws that read neither vPos nor vFace, take no depth from
+// the shader and test the depth early (depth function F, written when Write) or not at
+// all (kNoDepth), their merge the opaque store into target 0 (Opaque) or d.merge.
+constexpr uint32_t kAnyState = 0xffffffffu, kNoDepth = 0;
+
+template <uint32_t F, bool Write, bool Opaque>
 void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_t mask,
                 TileWorker& w, uint64_t& shaded) {
+  constexpr bool any = F == kAnyState;
   const float* pl = d.planes.data() + p.planeOffset;
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
+  // FillParts of this block the deferred Clear has yet to write (lazyFill: the batch
+  // tests against and writes over the fill's values).
+  uint32_t fillLeft = w.lazyFill.parts && w.pending.take(bx, by) ? w.lazyFill.parts : 0;
   v8f fx[2], fy[2];
   for (int h = 0; h < 2; ++h) {
     fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
@@ -188,7 +202,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   }
   evalPlane(pl, fx, fy, nullptr, w.invW);
   const v8f zero{}, one = zero + 1.0f;
-  if (d.depthTest || d.usesPosition) {  // z is read by the depth test and vPos only
+  if (any ? d.depthTest || d.usesPosition : F != kNoDepth) {  // z is read by the depth test and vPos only
     if (d.wBuffer) {  // w / w_far plus the primitive's depth bias
       for (int h = 0; h < 2; ++h)
         store8(w.z + 8 * h, bcast(d.invFarW) / load8(w.invW + 8 * h) + bcast(p.wDepthOffset));
@@ -202,12 +216,25 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       store8(w.z + 8 * h, one < z ? one : z);
     }
   }
-  if (d.earlyDepth) {
-    mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, w.z, d.depthWrite);
-    if (!mask) return;
+  if (any ? d.earlyDepth : F != kNoDepth) {
+    if (fillLeft & kFillDepth) {  // the block's depth is the fill's z in every lane
+      if constexpr (any)
+        mask = depthTestOverFill(d, bx, by, mask, w.z);
+      else
+        mask = depthRowsOver(d, bx, by, mask, w.z, d.fill.z, [](v8f a, v8f b) { return compareDepths<F>(a, b); });
+      fillLeft &= ~kFillDepth;
+    } else if (!any && bx + 4 <= d.width && by + 4 <= d.height) {
+      mask = depthRows(d, bx, by, mask, w.z, Write, [](v8f a, v8f b) { return compareDepths<F>(a, b); });
+    } else {
+      mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, w.z, d.depthWrite);
+    }
+    if (!mask) {
+      if (fillLeft) fillBlock(d, bx, by, fillLeft);
+      return;
+    }
   }
   w.interpolateInputs(pl + 6, w.inputTargets.data(), w.inputTargets.size(), ox, oy, w.invW, w.w);
-  if (d.usesPosition) {
+  if (any && d.usesPosition) {
     auto& pos = w.regs.inputs[kPixelInPosition];
     // The position's z is the interpolated z, also when the depth buffer holds w.
     if (d.wBuffer) evalPlane(pl + 3, fx, fy, nullptr, pos.c[2]);
@@ -218,7 +245,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       pos.c[3][l] = w.w[l];
     }
   }
-  if (d.usesFace) {
+  if (any && d.usesFace) {
     // vFace: > 0 for clockwise (front-facing) triangles, < 0 for counter-clockwise.
     const float face = p.kind == PrimKind::Triangle && p.counterClockwise ? -1.0f : 1.0f;
     auto& f = w.regs.inputs[exec::kPixelInFace];
@@ -227,23 +254,35 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   w.regs.laneMask = mask;
   exec::execute(*d.pixelProgram, d.execContext, w.regs);
   mask &= w.regs.laneMask;
-  if (d.shaderDepth) {
+  if (any && d.shaderDepth) {
     // The shader's depth replaces the interpolated one, clamped to [0,1].
     const float* z = w.regs.outputs[exec::kPixelOutDepth].c[0];
     for (int l = 0; l < N; ++l) w.z[l] = std::clamp(z[l], 0.0f, 1.0f);
   }
   shaded += static_cast<uint64_t>(__builtin_popcount(mask));
+  if (fillLeft) {  // target 0's fill (the depth's is written by now)
+    if (!mask) {
+      fillBlock(d, bx, by, fillLeft);
+      return;
+    }
+    storeOpaqueOver(d.targets[0], bx, by, mask, w.regs.outputs[0].c, d.fill.colorValue);
+    return;
+  }
   if (!mask) return;
-  (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
+  if constexpr (Opaque)
+    storeOpaque(d.targets[0], d.width, d.height, bx, by, mask, w.regs.outputs[0].c);
+  else
+    (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
 }
 
+template <uint32_t F, bool Write, bool Opaque>
 void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorker& w,
                uint64_t& shaded) {
   const int tx = int(tile % bins.tilesX), ty = int(tile / bins.tilesX);
   const int x0 = tx * kTileSize, y0 = ty * kTileSize;
   const int x1 = std::min(x0 + kTileSize, d.width) - 1, y1 = std::min(y0 + kTileSize, d.height) - 1;
   uint64_t count = 0;  // local: the per-thread counters share cache lines
-  applyFill(d.fill, d.depth, x0, y0, x1 + 1, y1 + 1);
+  beginTileFill(d, w.lazyFill, x0, y0, x1 + 1, y1 + 1, w.pending);
   for (uint32_t pi : bins.lists[tile]) {
     const Primitive& p = d.prims[pi];
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
@@ -255,12 +294,47 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
       if (tri) EdgeWalk::at(p, minX, by, e);
       for (int bx = minX; bx <= maxX; bx += 4) {
         const uint16_t mask = coverage(p, walk, e, bx, by);
-        if (mask) shadeBatch(d, p, bx, by, mask, w, count);
+        if (mask) shadeBatch<F, Write, Opaque>(d, p, bx, by, mask, w, count);
         for (int k = 0; k < 3; ++k) e[k] += walk.stepX[k];
       }
     }
   }
+  finishTileFill(d, w.lazyFill, w.pending);
   shaded += count;
+}
+
+using ShadeTileFn = void (*)(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorker& w,
+                             uint64_t& shaded);
+
+template <bool Opaque>
+ShadeTileFn chooseShadeTile(const RasterDraw& d) {
+  using namespace d3d;
+  if (!d.depthTest) return shadeTile<kNoDepth, false, Opaque>;
+  const bool write = d.depthWrite;
+  switch (d.depthFunc) {
+    case CMP_LESS: return write ? shadeTile<CMP_LESS, true, Opaque> : shadeTile<CMP_LESS, false, Opaque>;
+    case CMP_LESSEQUAL:
+      return write ? shadeTile<CMP_LESSEQUAL, true, Opaque> : shadeTile<CMP_LESSEQUAL, false, Opaque>;
+    case CMP_GREATER: return write ? shadeTile<CMP_GREATER, true, Opaque> : shadeTile<CMP_GREATER, false, Opaque>;
+    case CMP_GREATEREQUAL:
+      return write ? shadeTile<CMP_GREATEREQUAL, true, Opaque> : shadeTile<CMP_GREATEREQUAL, false, Opaque>;
+    case CMP_EQUAL: return write ? shadeTile<CMP_EQUAL, true, Opaque> : shadeTile<CMP_EQUAL, false, Opaque>;
+    default: return shadeTile<kAnyState, false, false>;
+  }
+}
+
+// The tile loop compiled for the draw's state where it is a common one, else the one
+// that reads the state at run time.
+ShadeTileFn chooseShadeTile(const RasterDraw& d) {
+  if (d.usesPosition || d.usesFace || d.shaderDepth || (d.depthTest && !d.earlyDepth))
+    return shadeTile<kAnyState, false, false>;
+  // The merge is the opaque store into target 0 (mergeBatch's first case, and what
+  // chooseMerge picks for this state).
+  const ColorTarget& t = d.targets[0];
+  bool opaque = t.data && !t.isFloat && t.writeMask == 0xf && !d.blend.enable && !d.alphaTest && !d.stencil &&
+                !d.srgbWrite && !d.dither;
+  for (size_t i = 1; i < d.targets.size(); ++i) opaque &= !d.targets[i].data;
+  return opaque ? chooseShadeTile<true>(d) : chooseShadeTile<false>(d);
 }
 
 }  // namespace
@@ -318,10 +392,12 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
         exec::prepare(*draw.pixelProgram, draw.execContext, w.regs, draw.prepareOptions);
     if (draw.pixelBuild && &w == &workers[0]) *draw.pixelBuild = info;
     w.interpolateInputs = chooseInterpolateInputs();
+    w.lazyFill = lazyFillFor(draw);
     for (const InterpolatedInput& in : draw.inputs)
       w.inputTargets.push_back({w.regs.inputs[in.input].c[in.component], in.flat});
   }
   std::vector<uint64_t> shaded(threads, 0);
+  const ShadeTileFn shadeTile = chooseShadeTile(draw);
   pool.parallelFor(busy.size(), [&](size_t i, int thread) {
     shadeTile(draw, bins, busy[i], workers[thread], shaded[thread]);
   });

@@ -121,8 +121,9 @@ struct RasterDraw {
   uint64_t* pixelsShaded = nullptr;  // per-thread counters (array of threadCount)
   exec::PrepareOptions prepareOptions;     // how the pixel program may run
   exec::ProgramBuildInfo* pixelBuild = nullptr;  // gets what ran it (null: not wanted)
-  // A Clear deferred to this draw: each tile is filled right before it is shaded
-  // (tiles without primitives too), so the target is written once while in cache.
+  // A Clear deferred to this draw, written tile by tile as the tiles are shaded (tiles
+  // without primitives too); where the draw overwrites target 0 or the depth, block by
+  // block together with its batches (raster_fill.h), so those are written once.
   struct Fill {
     bool color = false, depth = false, stencil = false;  // surfaces (depth: the z values)
     Rect rect;                                             // inside the target
