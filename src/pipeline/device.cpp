@@ -433,6 +433,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   for (const TexturePtr& t : targets_)
     if (t) t->markDirty();
   ++stats_.draws;
+  if (d.passthroughSampler) ++stats_.samplePassthroughDraws;
   reportBoundStops(plan->vertexLowered ? "vertex shader" : nullptr, vertexBoundStops, "vertices");
   reportBoundStops(plan->pixelLowered ? "pixel shader" : nullptr, pixelBoundStops.load(), "pixels");
 }

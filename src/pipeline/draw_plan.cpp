@@ -339,6 +339,10 @@ std::shared_ptr<const DrawPlan> buildDrawPlan(const DeviceState& st, const DrawS
                                                               : MergeState::Target::Unorm8Masked;
   }
   p.merge = chooseMerge(m);
+  bool opaqueStore = m.targets[0] == MergeState::Target::Unorm8Full && !m.stencil && !m.srgbWrite && !m.dither &&
+                     !p.alphaTest && !p.blend.enable && (!p.depthTest || p.earlyDepth);
+  for (int i = 1; i < kMaxRenderTargets; ++i) opaqueStore &= m.targets[size_t(i)] == MergeState::Target::None;
+  if (opaqueStore && !p.usesPosition && !p.usesFace) p.samplePassthrough = exec::findSamplePassthrough(p.pixelProgram);
   if (p.earlyDepth) p.earlyDepthTestFn = chooseEarlyDepthTest(p.depthFunc, p.depthWrite);
   return plan;
 }

@@ -19,6 +19,7 @@
 #include "ff_vertex.h"
 #include "raster.h"
 #include "refx/core/thread_pool.h"
+#include "refx/exec/analysis.h"
 #include "refx/exec/lower.h"
 #include "refx/resource/sampler.h"
 #include "vertex_fetch.h"
@@ -77,6 +78,10 @@ struct DrawPlan {
   uint32_t alphaFunc = 8, depthFunc = 4;
   MergeBatchFn merge = nullptr;
   EarlyDepthFn earlyDepthTestFn = nullptr;
+  // The program only samples a texture into output 0 and the merge only stores it
+  // (opaque, 8-bit target 0 alone, depth tested early if at all): the pixel stage may
+  // write the sample's bytes itself (RasterDraw::passthroughSampler).
+  std::optional<exec::SamplePassthrough> samplePassthrough;
 };
 
 // The key of the plan for `st` drawing into `surfaces` with `options`/`caps`.

@@ -37,12 +37,23 @@ inline v8i toUnorm8x8(v8f v) {
   return __builtin_convertvector(v * (zero + 255.0f) + (zero + 0.5f), v8i);
 }
 
-// Opaque writes with nothing but an (already done) depth test: convert the whole
-// batch to 8 bits at once and store the live lanes.
-inline void storeOpaque(const ColorTarget& t, int width, int height, int bx, int by, uint16_t mask,
-                        const float (*color)[kBatchLanes]) {
-  alignas(64) uint32_t packed[kBatchLanes];
+// Lanes k..k+7 of a batch's colours as the opaque merge stores them: 8 bits per
+// channel as D3DCOLOR, the alpha 0xff for a target without alpha.
+inline v8i packOpaque(const ColorTarget& t, const float (*color)[kBatchLanes], int k) {
+  v8i q[4];
+  for (int c = 0; c < 4; ++c) {
+    v8f v;
+    __builtin_memcpy(&v, color[c] + k, sizeof v);
+    q[c] = toUnorm8x8(v);
+  }
   const v8i alphaOr = v8i{} + int32_t(t.hasAlpha ? 0u : 0xff000000u);
+  return ((q[3] << 24) | alphaOr) | (q[0] << 16) | (q[1] << 8) | q[2];
+}
+
+// Writes the lanes in `mask` of a batch of D3DCOLORs into 8-bit target t at block
+// (bx, by).
+inline void storePacked(const ColorTarget& t, int width, int height, int bx, int by, uint16_t mask,
+                        const uint32_t packed[kBatchLanes]) {
   const bool inside = bx + 4 <= width && by + 4 <= height;
   const bool whole = mask == 0xffff && inside;
 #if defined(__AVX2__)
@@ -52,64 +63,62 @@ inline void storeOpaque(const ColorTarget& t, int width, int height, int bx, int
 #else
   const bool masked = false;
 #endif
+  if (!whole && !masked) {
+    for (int l = 0; l < kBatchLanes; ++l)
+      if (mask & (1 << l))
+        reinterpret_cast<uint32_t*>(t.data + size_t(by + kLaneY[l]) * t.pitch)[bx + kLaneX[l]] = packed[l];
+    return;
+  }
   for (int k = 0; k < kBatchLanes; k += 8) {
-    v8i q[4];
-    for (int c = 0; c < 4; ++c) {
-      v8f v;
-      __builtin_memcpy(&v, color[c] + k, sizeof v);
-      q[c] = toUnorm8x8(v);
-    }
-    const v8i p = ((q[3] << 24) | alphaOr) | (q[0] << 16) | (q[1] << 8) | q[2];
+    v8u p;
+    __builtin_memcpy(&p, packed + k, sizeof p);
+    // Lanes k..k+7 are rows k/4 and k/4 + 1: lanes 0,1,4,5 and 2,3,6,7 of the half.
+    const v4u r0 = __builtin_shufflevector(p, p, 0, 1, 4, 5);
+    const v4u r1 = __builtin_shufflevector(p, p, 2, 3, 6, 7);
+    uint8_t* row = t.data + size_t(by + k / 4) * t.pitch + size_t(bx) * 4;
     if (whole) {
-      // Lanes k..k+7 are rows k/4 and k/4 + 1: lanes 0,1,4,5 and 2,3,6,7 of the half.
-      const v4u r0 = __builtin_shufflevector(v8u(p), v8u(p), 0, 1, 4, 5);
-      const v4u r1 = __builtin_shufflevector(v8u(p), v8u(p), 2, 3, 6, 7);
-      uint8_t* row = t.data + size_t(by + k / 4) * t.pitch + size_t(bx) * 4;
       __builtin_memcpy(row, &r0, sizeof r0);
       __builtin_memcpy(row + t.pitch, &r1, sizeof r1);
-    } else if (masked) {
-#if defined(__AVX2__)
-      const int live = (mask >> k) & 0xff;
-      const v8i on = (laneBit & live) != 0;
-      const v4u r0 = __builtin_shufflevector(v8u(p), v8u(p), 0, 1, 4, 5);
-      const v4u r1 = __builtin_shufflevector(v8u(p), v8u(p), 2, 3, 6, 7);
-      const v4u m0 = __builtin_shufflevector(v8u(on), v8u(on), 0, 1, 4, 5);
-      const v4u m1 = __builtin_shufflevector(v8u(on), v8u(on), 2, 3, 6, 7);
-      __m128i vr0, vr1, vm0, vm1;
-      __builtin_memcpy(&vr0, &r0, sizeof vr0);
-      __builtin_memcpy(&vr1, &r1, sizeof vr1);
-      __builtin_memcpy(&vm0, &m0, sizeof vm0);
-      __builtin_memcpy(&vm1, &m1, sizeof vm1);
-      uint8_t* row = t.data + size_t(by + k / 4) * t.pitch + size_t(bx) * 4;
-      _mm_maskstore_epi32(reinterpret_cast<int*>(row), vm0, vr0);
-      _mm_maskstore_epi32(reinterpret_cast<int*>(row + t.pitch), vm1, vr1);
-#endif
-    } else {
-      __builtin_memcpy(packed + k, &p, sizeof p);
+      continue;
     }
+#if defined(__AVX2__)
+    const int live = (mask >> k) & 0xff;
+    const v8i on = (laneBit & live) != 0;
+    const v4u m0 = __builtin_shufflevector(v8u(on), v8u(on), 0, 1, 4, 5);
+    const v4u m1 = __builtin_shufflevector(v8u(on), v8u(on), 2, 3, 6, 7);
+    __m128i vr0, vr1, vm0, vm1;
+    __builtin_memcpy(&vr0, &r0, sizeof vr0);
+    __builtin_memcpy(&vr1, &r1, sizeof vr1);
+    __builtin_memcpy(&vm0, &m0, sizeof vm0);
+    __builtin_memcpy(&vm1, &m1, sizeof vm1);
+    _mm_maskstore_epi32(reinterpret_cast<int*>(row), vm0, vr0);
+    _mm_maskstore_epi32(reinterpret_cast<int*>(row + t.pitch), vm1, vr1);
+#endif
   }
-  if (whole || masked) return;
-  for (int l = 0; l < kBatchLanes; ++l)
-    if (mask & (1 << l))
-      reinterpret_cast<uint32_t*>(t.data + size_t(by + kLaneY[l]) * t.pitch)[bx + kLaneX[l]] = packed[l];
 }
 
-// The opaque store of a batch into a whole 4x4 block of 8-bit target t (inside it) that
-// holds `under` (a D3DCOLOR) in every pixel: the live lanes of `mask` get the colour as
-// the opaque merge converts it, the others `under`, all 16 written at once.
-inline void storeOpaqueOver(const ColorTarget& t, int bx, int by, uint16_t mask, const float (*color)[kBatchLanes],
-                     uint32_t under) {
-  const v8i alphaOr = v8i{} + int32_t(t.hasAlpha ? 0u : 0xff000000u);
+// Opaque writes with nothing but an (already done) depth test: convert the whole
+// batch to 8 bits at once and store the live lanes.
+inline void storeOpaque(const ColorTarget& t, int width, int height, int bx, int by, uint16_t mask,
+                        const float (*color)[kBatchLanes]) {
+  alignas(64) uint32_t packed[kBatchLanes];
+  for (int k = 0; k < kBatchLanes; k += 8) {
+    const v8i p = packOpaque(t, color, k);
+    __builtin_memcpy(packed + k, &p, sizeof p);
+  }
+  storePacked(t, width, height, bx, by, mask, packed);
+}
+
+// The store of a batch of D3DCOLORs into a whole 4x4 block of 8-bit target t (inside
+// it) that holds `under` (a D3DCOLOR) in every pixel: the live lanes of `mask` get
+// theirs, the others `under`, all 16 written at once.
+inline void storePackedOver(const ColorTarget& t, int bx, int by, uint16_t mask, const uint32_t packed[kBatchLanes],
+                            uint32_t under) {
   const v8i laneBit{1, 2, 4, 8, 16, 32, 64, 128};
   const v8i keep = v8i{} + int32_t(under);
   for (int k = 0; k < kBatchLanes; k += 8) {
-    v8i q[4];
-    for (int c = 0; c < 4; ++c) {
-      v8f v;
-      __builtin_memcpy(&v, color[c] + k, sizeof v);
-      q[c] = toUnorm8x8(v);
-    }
-    const v8i p = ((q[3] << 24) | alphaOr) | (q[0] << 16) | (q[1] << 8) | q[2];
+    v8i p;
+    __builtin_memcpy(&p, packed + k, sizeof p);
     const v8i out = (laneBit & ((mask >> k) & 0xff)) != 0 ? p : keep;
     // Lanes k..k+7 are rows k/4 and k/4 + 1: lanes 0,1,4,5 and 2,3,6,7 of the half.
     const v4u r0 = __builtin_shufflevector(v8u(out), v8u(out), 0, 1, 4, 5);
@@ -118,6 +127,19 @@ inline void storeOpaqueOver(const ColorTarget& t, int bx, int by, uint16_t mask,
     __builtin_memcpy(row, &r0, sizeof r0);
     __builtin_memcpy(row + t.pitch, &r1, sizeof r1);
   }
+}
+
+// The opaque store of a batch into a whole 4x4 block of 8-bit target t (inside it) that
+// holds `under` (a D3DCOLOR) in every pixel: the live lanes of `mask` get the colour as
+// the opaque merge converts it, the others `under`, all 16 written at once.
+inline void storeOpaqueOver(const ColorTarget& t, int bx, int by, uint16_t mask, const float (*color)[kBatchLanes],
+                            uint32_t under) {
+  alignas(64) uint32_t packed[kBatchLanes];
+  for (int k = 0; k < kBatchLanes; k += 8) {
+    const v8i p = packOpaque(t, color, k);
+    __builtin_memcpy(packed + k, &p, sizeof p);
+  }
+  storePackedOver(t, bx, by, mask, packed, under);
 }
 
 // The depth test of a batch on a 4x4 block (inside the surface) that holds `under` in

@@ -87,6 +87,17 @@ void bindPixelStage(const DrawPlan& plan, const DeviceState& st, PixelBindings& 
     d.execContext.boolConstantCount = int(st.psConstB.size());
   }
   d.inputs = plan.inputs;
+  d.passthroughSampler = nullptr;
+  if (plan.samplePassthrough) {
+    const BoundSampler& bound = b.bound[size_t(plan.samplePassthrough->sampler)];
+    const int input = plan.samplePassthrough->input;
+    for (size_t j = 0; j + 1 < d.inputs.size(); ++j)
+      if (d.inputs[j].input == input && d.inputs[j].component == 0 && d.inputs[j + 1].input == input &&
+          d.inputs[j + 1].component == 1 && bound.prepared && bound.texture->type() == TextureType::Texture2D) {
+        d.passthroughSampler = &*bound.prepared;
+        d.passthroughInput = int(j);
+      }
+  }
   d.usesPosition = plan.usesPosition;
   d.usesFace = plan.usesFace;
   d.shaderDepth = plan.shaderDepth;

@@ -142,6 +142,8 @@ struct TileWorker {
   alignas(64) float z[N];
   alignas(64) float invW[N];
   alignas(64) float w[N];  // 1 / invW
+  alignas(64) float passU[N], passV[N];  // RasterDraw::passthroughSampler's coordinates
+  InputTarget passTargets[2];
 };
 
 // Eight lanes as one value (v8f, merge_kernels.h): interpolation is vectorised
@@ -233,31 +235,45 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       return;
     }
   }
-  w.interpolateInputs(pl + 6, w.inputTargets.data(), w.inputTargets.size(), ox, oy, w.invW, w.w);
-  if (any && d.usesPosition) {
-    auto& pos = w.regs.inputs[kPixelInPosition];
-    // The position's z is the interpolated z, also when the depth buffer holds w.
-    if (d.wBuffer) evalPlane(pl + 3, fx, fy, nullptr, pos.c[2]);
-    for (int l = 0; l < N; ++l) {
-      pos.c[0][l] = float(bx + kLaneX[l]);
-      pos.c[1][l] = float(by + kLaneY[l]);
-      if (!d.wBuffer) pos.c[2][l] = w.z[l];
-      pos.c[3][l] = w.w[l];
+  // The program's output 0 as floats, or (passthrough) as the D3DCOLORs to store.
+  const float (*color)[N] = w.regs.outputs[0].c;
+  alignas(64) uint32_t packed[N];
+  bool isPacked = false;
+  if (Opaque && d.passthroughSampler) {
+    // The program only samples a 2D texture: its (u, v) interpolated as for the
+    // program, the sample's bytes as the opaque store converts them.
+    w.interpolateInputs(pl + 6 + 3 * d.passthroughInput, w.passTargets, 2, ox, oy, w.invW, w.w);
+    isPacked = d.passthroughSampler->sampleImplicitArgb8(w.passU, w.passV, mask, packed);
+    if (!isPacked) d.passthroughSampler->sampleImplicit(w.passU, w.passV, nullptr, mask, w.regs.outputs[0].c);
+    else if (!d.targets[0].hasAlpha)
+      for (uint32_t& v : packed) v |= 0xff000000u;
+  } else {
+    w.interpolateInputs(pl + 6, w.inputTargets.data(), w.inputTargets.size(), ox, oy, w.invW, w.w);
+    if (any && d.usesPosition) {
+      auto& pos = w.regs.inputs[kPixelInPosition];
+      // The position's z is the interpolated z, also when the depth buffer holds w.
+      if (d.wBuffer) evalPlane(pl + 3, fx, fy, nullptr, pos.c[2]);
+      for (int l = 0; l < N; ++l) {
+        pos.c[0][l] = float(bx + kLaneX[l]);
+        pos.c[1][l] = float(by + kLaneY[l]);
+        if (!d.wBuffer) pos.c[2][l] = w.z[l];
+        pos.c[3][l] = w.w[l];
+      }
     }
-  }
-  if (any && d.usesFace) {
-    // vFace: > 0 for clockwise (front-facing) triangles, < 0 for counter-clockwise.
-    const float face = p.kind == PrimKind::Triangle && p.counterClockwise ? -1.0f : 1.0f;
-    auto& f = w.regs.inputs[exec::kPixelInFace];
-    for (int c = 0; c < 4; ++c) std::fill_n(f.c[c], N, face);
-  }
-  w.regs.laneMask = mask;
-  exec::execute(*d.pixelProgram, d.execContext, w.regs);
-  mask &= w.regs.laneMask;
-  if (any && d.shaderDepth) {
-    // The shader's depth replaces the interpolated one, clamped to [0,1].
-    const float* z = w.regs.outputs[exec::kPixelOutDepth].c[0];
-    for (int l = 0; l < N; ++l) w.z[l] = std::clamp(z[l], 0.0f, 1.0f);
+    if (any && d.usesFace) {
+      // vFace: > 0 for clockwise (front-facing) triangles, < 0 for counter-clockwise.
+      const float face = p.kind == PrimKind::Triangle && p.counterClockwise ? -1.0f : 1.0f;
+      auto& f = w.regs.inputs[exec::kPixelInFace];
+      for (int c = 0; c < 4; ++c) std::fill_n(f.c[c], N, face);
+    }
+    w.regs.laneMask = mask;
+    exec::execute(*d.pixelProgram, d.execContext, w.regs);
+    mask &= w.regs.laneMask;
+    if (any && d.shaderDepth) {
+      // The shader's depth replaces the interpolated one, clamped to [0,1].
+      const float* z = w.regs.outputs[exec::kPixelOutDepth].c[0];
+      for (int l = 0; l < N; ++l) w.z[l] = std::clamp(z[l], 0.0f, 1.0f);
+    }
   }
   shaded += static_cast<uint64_t>(__builtin_popcount(mask));
   if (fillLeft) {  // target 0's fill (the depth's is written by now)
@@ -265,12 +281,17 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       fillBlock(d, bx, by, fillLeft);
       return;
     }
-    storeOpaqueOver(d.targets[0], bx, by, mask, w.regs.outputs[0].c, d.fill.colorValue);
+    if (isPacked)
+      storePackedOver(d.targets[0], bx, by, mask, packed, d.fill.colorValue);
+    else
+      storeOpaqueOver(d.targets[0], bx, by, mask, color, d.fill.colorValue);
     return;
   }
   if (!mask) return;
-  if constexpr (Opaque)
-    storeOpaque(d.targets[0], d.width, d.height, bx, by, mask, w.regs.outputs[0].c);
+  if (isPacked)
+    storePacked(d.targets[0], d.width, d.height, bx, by, mask, packed);
+  else if constexpr (Opaque)
+    storeOpaque(d.targets[0], d.width, d.height, bx, by, mask, color);
   else
     (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
 }
@@ -393,6 +414,8 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
     if (draw.pixelBuild && &w == &workers[0]) *draw.pixelBuild = info;
     w.interpolateInputs = chooseInterpolateInputs();
     w.lazyFill = lazyFillFor(draw);
+    w.passTargets[0] = {w.passU, false};
+    w.passTargets[1] = {w.passV, false};
     for (const InterpolatedInput& in : draw.inputs)
       w.inputTargets.push_back({w.regs.inputs[in.input].c[in.component], in.flat});
   }

@@ -11,6 +11,7 @@
 #include "refx/exec/abi.h"
 #include "refx/exec/interpreter.h"
 #include "refx/pipeline/device.h"
+#include "refx/resource/sampler.h"
 
 namespace refx::pipeline {
 
@@ -118,6 +119,11 @@ struct RasterDraw {
   // D3DRS_DEPTHBIAS and SLOPESCALEDEPTHBIAS, added to triangles' depth at setup (their z
   // planes, or wDepthOffset).
   float depthBias = 0, slopeScaleDepthBias = 0;
+  // The plan's samplePassthrough with a prepared 2D texture bound: the pixel stage
+  // samples it at input `passthroughInput` of `inputs` (u; v is the next one) and stores
+  // the bytes, instead of running the program and the merge. Null: the program runs.
+  const PreparedSampler* passthroughSampler = nullptr;
+  int passthroughInput = -1;
   uint64_t* pixelsShaded = nullptr;  // per-thread counters (array of threadCount)
   exec::PrepareOptions prepareOptions;     // how the pixel program may run
   exec::ProgramBuildInfo* pixelBuild = nullptr;  // gets what ran it (null: not wanted)

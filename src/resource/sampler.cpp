@@ -1459,6 +1459,12 @@ void PreparedSampler::sampleImplicit(const float* u, const float* v, const float
   sampleImpl(*tex_, state_, req, out, true);
 }
 
+bool PreparedSampler::sampleImplicitArgb8(const float* u, const float* v, uint16_t laneMask,
+                                          uint32_t out[kBatchLanes]) const {
+  (void)u, (void)v, (void)laneMask, (void)out;
+  return false;
+}
+
 Kernel2D resource::selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa) {
   return isa == CpuIsa::Avx512 ? selectKernel2DAvx512(au, av, linear)
                                : selectKernel2DAvx2(au, av, linear);

@@ -577,11 +577,17 @@ int runBench(const BenchOptions& o) {
             const DrawStats& run = dev.stats();
             total.planCacheHits += run.planCacheHits;
             total.planCacheMisses += run.planCacheMisses;
+            total.draws += run.draws;
+            total.samplePassthroughDraws += run.samplePassthroughDraws;
             total.programBuilds.insert(total.programBuilds.end(), run.programBuilds.begin(), run.programBuilds.end());
             const uint64_t lookups = total.planCacheHits + total.planCacheMisses;
             std::printf("  plan cache: %llu hits, %llu misses", static_cast<unsigned long long>(total.planCacheHits),
                         static_cast<unsigned long long>(total.planCacheMisses));
             if (lookups) std::printf(", hit rate %.1f%%", 100.0 * double(total.planCacheHits) / double(lookups));
+            if (total.samplePassthroughDraws)
+              std::printf("; sample passthrough: %llu of %llu draws stored texture samples as bytes",
+                          static_cast<unsigned long long>(total.samplePassthroughDraws),
+                          static_cast<unsigned long long>(total.draws));
             std::printf("\n  program builds: %zu\n", total.programBuilds.size());
             for (const DrawStats::ProgramBuild& b : total.programBuilds)
               std::printf("    %-32s %5d instructions %10.1f us  %s\n", b.name.c_str(), b.instructions,

@@ -54,6 +54,9 @@ struct DrawStats {
   // Draws whose DrawPlan (programs, interpolation, output merger for the state) was
   // found in the device's cache, and draws that had to build one.
   uint64_t planCacheHits = 0, planCacheMisses = 0;
+  // Draws whose pixel program only samples a 2D texture into an opaque 8-bit target,
+  // run as the sample stored as bytes (the same pixels, without running the program).
+  uint64_t samplePassthroughDraws = 0;
   // One entry per program translated for a plan: which program, how long the
   // translation took and what runs it ("jit-avx512", "jit-avx2", "interpreter").
   struct ProgramBuild {

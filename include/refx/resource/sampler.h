@@ -68,6 +68,12 @@ class PreparedSampler {
   // what sample() gives for it, without building a SampleRequest.
   void sampleImplicit(const float* u, const float* v, const float* w, uint16_t laneMask,
                       float out[4][kBatchLanes]) const;
+  // sampleImplicit of a 2D texture at (u, v) as 8-bit unorm D3DCOLORs: out[lane] =
+  // unorm8(a) << 24 | unorm8(r) << 16 | unorm8(g) << 8 | unorm8(b) of its result (lanes
+  // outside laneMask: unspecified), formed from the filter's integer sums where the
+  // batch kernel serves the request (same bytes, see sampler.cpp). False: nothing
+  // written (no such kernel for this texture, state or batch).
+  bool sampleImplicitArgb8(const float* u, const float* v, uint16_t laneMask, uint32_t out[kBatchLanes]) const;
 
  private:
   const Texture* tex_;
