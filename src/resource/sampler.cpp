@@ -1363,8 +1363,10 @@ struct PreparedPlan {
   Fast2D fast;
   bool needLambda;
   Kernel2D single = nullptr;  // no λ needed: kernel for level 0 (levels[0] set)
-  // sample2DUniform's common case in one step where the instruction set has it.
+  // sample2DUniform's common case in one step where the instruction set has it, and
+  // with sampleImplicit's other paths behind it (context: uniformPlan).
   resource::Uniform2D uniform = nullptr;
+  resource::Implicit2D implicit = nullptr;
   resource::UniformPlan uniformPlan{};
 
   PreparedPlan(const Texture& tex, const SamplerState& state, const TextureAddress addr[3])
@@ -1383,10 +1385,17 @@ struct PreparedPlan {
     if (needLambda && st.mipFilter != TextureFilter::Linear && st.mipLodBias == 0.0f &&
         activeIsa() == CpuIsa::Avx512) {
       uniform = resource::selectUniform2DAvx512(addr[0], addr[1]);
+      implicit = resource::selectImplicit2DAvx512(addr[0], addr[1]);
       uniformPlan = {{fast.size[0], fast.size[1]}, fast.first, fast.last, fast.minLinear,
-                     fast.magLinear, fast.mipNone, levels.data()};
+                     fast.magLinear, fast.mipNone, levels.data(), sampleImplicitRest, this};
     }
   }
+
+  // sampleImplicit past the batch kernel (tried and declined, or not there): out of
+  // line, so that the common call does not set up this path's frame.
+  [[gnu::noinline]] static void sampleImplicitRest(const void* plan, const float* u,
+                                                   const float* v, const float* w,
+                                                   uint16_t laneMask, float (*out)[kBatchLanes]);
 };
 
 }  // namespace
@@ -1397,8 +1406,11 @@ PreparedSampler::PreparedSampler(const Texture& tex, const SamplerState& state)
                                   validAddress(state.addressW)};
   // ANISOTROPIC (beyond MAXANISOTROPY 1) goes through sampleImpl every time.
   const bool aniso = anisotropicFootprint(tex, state) && anisotropyLimit(state) > 1;
-  if (tex.type() == TextureType::Texture2D && tex.levelCount() > 0 && !aniso)
-    plan_ = std::make_shared<const PreparedPlan>(tex, state, addr);
+  if (tex.type() == TextureType::Texture2D && tex.levelCount() > 0 && !aniso) {
+    auto plan = std::make_shared<const PreparedPlan>(tex, state, addr);
+    if (plan->implicit) implicit_ = {plan->implicit, &plan->uniformPlan};
+    plan_ = std::move(plan);
+  }
 }
 
 namespace {
@@ -1422,20 +1434,18 @@ namespace {
          sample2DUniform(p->fast, c, laneMask, out);
 }
 
-// sampleImplicit past the batch kernel (tried and declined, or not there) for a plan:
-// out of line, so that the common call does not set up this path's frame, and with
-// its arguments in registers, so that the call to it is a jump.
-[[gnu::noinline]] void sampleImplicitRest(const PreparedPlan* p, const float* u, const float* v,
-                                          const float* w, uint16_t laneMask,
-                                          float out[4][kBatchLanes]) {
+}  // namespace
+
+void PreparedPlan::sampleImplicitRest(const void* plan, const float* u, const float* v,
+                                      const float* w, uint16_t laneMask,
+                                      float (*out)[kBatchLanes]) {
+  const auto* p = static_cast<const PreparedPlan*>(plan);
   if (samplePrepared(p, u, v, w, true, laneMask, out, false)) return;
   SampleRequest req;
   req.u = u, req.v = v, req.w = w;
   req.laneMask = laneMask;
   sampleImpl(*p->fast.tex, p->st, req, out, true);
 }
-
-}  // namespace
 
 void PreparedSampler::sample(const SampleRequest& req, float out[4][kBatchLanes]) const {
   if (!samplePrepared(static_cast<const PreparedPlan*>(plan_.get()), req.u, req.v, req.w,
@@ -1447,10 +1457,12 @@ void PreparedSampler::sampleImplicit(const float* u, const float* v, const float
                                      uint16_t laneMask, float out[4][kBatchLanes]) const {
   // samplePrepared's order: a plan with the batch kernel has no `single` and takes λ
   // from derivatives without mip blending, so the kernel comes first.
-  if (const auto* p = static_cast<const PreparedPlan*>(plan_.get())) {
-    if (p->uniform && p->uniform(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out))
-      return;
-    sampleImplicitRest(p, u, v, w, laneMask, out);
+  if (implicit_.fn) {
+    implicit_.fn(implicit_.context, u ? u : kZeros, v ? v : kZeros, w, laneMask, out);
+    return;
+  }
+  if (plan_) {
+    PreparedPlan::sampleImplicitRest(plan_.get(), u, v, w, laneMask, out);
     return;
   }
   SampleRequest req;

@@ -269,15 +269,21 @@ void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out
 // its four lanes.
 // Every lane belongs to one quad, so every lane in `mask` is written once; the others
 // read 0. Lanes are independent in the kernel, so this is what a batch of one key gives
-// on those lanes. False (nothing written) when a level is not for the kernels.
-template <TextureAddress AU, TextureAddress AV>
+// on those lanes. False (nothing written) when a level is not for the kernels, after
+// plan.rest with Rest.
+template <TextureAddress AU, TextureAddress AV, bool Rest>
 [[gnu::noinline]] bool mixedLevels16(const UniformPlan& plan, const float* u, const float* v,
-                                     uint32_t mask, __m512i k, float out[4][kLanes]) {
+                                     const float* w, uint32_t mask, __m512i k,
+                                     float out[4][kLanes]) {
   alignas(64) int lanes[16];  // here, not in the caller: its frame stays unaligned
   _mm512_store_si512(lanes, k);
   const int keys[4] = {lanes[0], lanes[4], lanes[8], lanes[12]};
-  for (int q = 0; q < 4; ++q)
-    if (!plan.levels[keys[q] >> 1]) return false;
+  for (int q = 0; q < 4; ++q) {
+    if (!plan.levels[keys[q] >> 1]) {
+      if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
+      return false;
+    }
+  }
   for (int ch = 0; ch < 4; ++ch) _mm512_storeu_ps(out[ch], _mm512_setzero_ps());
   uint32_t done = 0;  // quads sampled
   for (int q = 0; q < 4; ++q) {
@@ -297,10 +303,16 @@ template <TextureAddress AU, TextureAddress AV>
 // sample2DUniform's classification of the four quads at once (see there): ρ² of each
 // quad with the same operations in the same order, in all four lanes of its 128-bit
 // block; the exponent gives λ's side of 0 and the nearest level when the mantissa keeps
-// log2 away from an integer.
-template <TextureAddress AU, TextureAddress AV>
-bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t mask,
-               float out[4][kLanes]) {
+// log2 away from an integer. With Rest, a batch it declines goes on to plan.rest, as a
+// tail call (the common path then calls nothing and keeps nothing across a call).
+template <TextureAddress AU, TextureAddress AV, bool Rest>
+[[gnu::always_inline]] inline bool uniformBatch16(const UniformPlan& plan, const float* u,
+                                                  const float* v, const float* w,
+                                                  uint32_t mask, float out[4][kLanes]) {
+  const auto decline = [&] {
+    if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
+    return false;
+  };
   v16f x, y;
   std::memcpy(&x, u, sizeof x);
   std::memcpy(&y, v, sizeof y);
@@ -318,7 +330,7 @@ bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t
                                                    _mm512_set1_epi32(0x7f000000));
   const __mmask16 inside = _mm512_cmplt_epu32_mask(__m512i(mant - 0x1000),
                                                    _mm512_set1_epi32(0x7ff000 - 0x1000));
-  if (__mmask16(normal & inside) != 0xffff) return false;
+  if (__mmask16(normal & inside) != 0xffff) return decline();
   const v16i e = v16i(v16u(bits) >> 23) - 127;
   const v16i linear = e >= 0 ? v16i{} + plan.minLinear : v16i{} + plan.magLinear;
   v16i level = (e + 1) >> 1;
@@ -328,7 +340,7 @@ bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t
   const v16i k = (level << 1) | linear;
   const int key = _mm_cvtsi128_si32(_mm512_castsi512_si128(__m512i(k)));
   if (_mm512_cmpeq_epi32_mask(__m512i(k), _mm512_set1_epi32(key)) != 0xffff) {
-    return mixedLevels16<AU, AV>(plan, u, v, mask, __m512i(k), out);
+    return mixedLevels16<AU, AV, Rest>(plan, u, v, w, mask, __m512i(k), out);
   }
   // The level reached by counting up to it (0 <= levelIndex <= last) rather than by
   // indexing with `key`: the level's size and texels then depend on predicted branches
@@ -343,12 +355,34 @@ bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t
   }
   asm("" : "+r"(counted));
   const SampleLevel* lv = plan.levels[counted];
-  if (!lv) return false;
+  if (!lv) return decline();
   if (key & 1)
     filter16<AU, AV, true>(*lv, u, v, __mmask16(mask), out);
   else
     filter16<AU, AV, false>(*lv, u, v, __mmask16(mask), out);
   return true;
+}
+
+template <TextureAddress AU, TextureAddress AV>
+bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t mask,
+               float out[4][kLanes]) {
+  return uniformBatch16<AU, AV, false>(plan, u, v, nullptr, mask, out);
+}
+
+template <TextureAddress AU, TextureAddress AV>
+void implicit16(const void* context, const float* u, const float* v, const float* w,
+                uint16_t laneMask, float (*out)[kLanes]) {
+  uniformBatch16<AU, AV, true>(*static_cast<const UniformPlan*>(context), u, v, w, laneMask, out);
+}
+
+template <TextureAddress AU>
+Implicit2D implicitForV(TextureAddress av) {
+  switch (av) {
+    case TextureAddress::Wrap: return implicit16<AU, TextureAddress::Wrap>;
+    case TextureAddress::Mirror: return implicit16<AU, TextureAddress::Mirror>;
+    case TextureAddress::MirrorOnce: return implicit16<AU, TextureAddress::MirrorOnce>;
+    default: return implicit16<AU, TextureAddress::Clamp>;
+  }
 }
 
 template <TextureAddress AU>
@@ -384,6 +418,15 @@ Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av) {
     case TextureAddress::Mirror: return uniformForV<TextureAddress::Mirror>(av);
     case TextureAddress::MirrorOnce: return uniformForV<TextureAddress::MirrorOnce>(av);
     default: return uniformForV<TextureAddress::Clamp>(av);
+  }
+}
+
+Implicit2D selectImplicit2DAvx512(TextureAddress au, TextureAddress av) {
+  switch (au) {
+    case TextureAddress::Wrap: return implicitForV<TextureAddress::Wrap>(av);
+    case TextureAddress::Mirror: return implicitForV<TextureAddress::Mirror>(av);
+    case TextureAddress::MirrorOnce: return implicitForV<TextureAddress::MirrorOnce>(av);
+    default: return implicitForV<TextureAddress::Clamp>(av);
   }
 }
 

@@ -29,6 +29,10 @@ struct UniformPlan {
   int minLinear, magLinear;         // 1: LINEAR
   bool mipNone;                     // MIPFILTER NONE: level 0
   const SampleLevel* const* levels;  // per level, nullptr: not for the kernels
+  // What PreparedSampler::sampleImplicit does past the kernel, given `owner`.
+  void (*rest)(const void* owner, const float* u, const float* v, const float* w,
+               uint16_t laneMask, float (*out)[kBatchLanes]);
+  const void* owner;
 };
 
 // Samples the batch when every quad's ρ² has the form that gives its level and filter
@@ -37,6 +41,12 @@ struct UniformPlan {
 using Uniform2D = bool (*)(const UniformPlan&, const float* u, const float* v, uint32_t mask,
                            float out[4][kBatchLanes]);
 Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av);
+
+// The Uniform2D kernel, and plan.rest(plan.owner, ...) where it declines: the whole of
+// sampleImplicit for a prepared plan (PreparedSampler::ImplicitKernel, context: the plan).
+using Implicit2D = void (*)(const void* plan, const float* u, const float* v, const float* w,
+                            uint16_t laneMask, float (*out)[kBatchLanes]);
+Implicit2D selectImplicit2DAvx512(TextureAddress au, TextureAddress av);
 
 namespace kernels {
 
