@@ -1230,7 +1230,8 @@ struct Fast2D {
     key = keys[q] = k;
   }
   if (mixed) return sample2DMixed(f, c, mask, keys, out);
-  const SampleLevel* lv = f.levels ? f.levels[key >> 1] : &f.tex->sampleLevel(0, key >> 1);
+  const SampleLevel* lv =
+      f.levels ? levelByCount(f.levels, key >> 1) : &f.tex->sampleLevel(0, key >> 1);
   if (!lv || (!f.levels && !fastLevel(*lv, st, f.addr))) return false;
   const Kernel2D kernel = f.kernels[key & 1];
   (kernel ? kernel : selectKernel2D(f.addr[0], f.addr[1], key & 1))(*lv, c[0], c[1], out);

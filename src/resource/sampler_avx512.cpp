@@ -342,19 +342,7 @@ template <TextureAddress AU, TextureAddress AV, bool Rest>
   if (_mm512_cmpeq_epi32_mask(__m512i(k), _mm512_set1_epi32(key)) != 0xffff) {
     return mixedLevels16<AU, AV, Rest>(plan, u, v, w, mask, __m512i(k), out);
   }
-  // The level reached by counting up to it (0 <= levelIndex <= last) rather than by
-  // indexing with `key`: the level's size and texels then depend on predicted branches
-  // (a draw's batches mostly share a level), not on the classification's result, so
-  // the kernel's long chain starts on the coordinates while the classification is
-  // still being computed.
-  const int levelIndex = key >> 1;
-  int counted = 0;
-  while (counted != levelIndex) {
-    ++counted;
-    asm("" : "+r"(counted));  // a count the compiler cannot replace by levelIndex
-  }
-  asm("" : "+r"(counted));
-  const SampleLevel* lv = plan.levels[counted];
+  const SampleLevel* lv = levelByCount(plan.levels, key >> 1);  // 0 <= key >> 1 <= last
   if (!lv) return decline();
   if (key & 1)
     filter16<AU, AV, true>(*lv, u, v, __mmask16(mask), out);

@@ -77,5 +77,20 @@ static inline void positionRange(TextureAddress a, int n, float& lo, float& hi) 
   }
 }
 
+// levels[index] (index >= 0), reached by counting up to it rather than by indexing: the
+// level's size and texels then depend on predicted branches (a draw's batches mostly
+// share a level), not on the LOD classification that computed `index`, so a kernel's
+// long dependency chain starts on the coordinates while the classification is still
+// being computed.
+static inline const SampleLevel* levelByCount(const SampleLevel* const* levels, int index) {
+  int counted = 0;
+  while (counted != index) {
+    ++counted;
+    asm("" : "+r"(counted));  // a count the compiler cannot replace by index
+  }
+  asm("" : "+r"(counted));
+  return levels[counted];
+}
+
 }  // namespace kernels
 }  // namespace refx::resource
