@@ -199,5 +199,106 @@ TEST(SamplerIsaVariants, BatchesMixingLevelsMatchTheReference) {
   EXPECT_GT(mixedBatches, 2000);
 }
 
+// Batches whose four quads share one level, for every level of a 64x64 texture (and
+// beyond its last, clamped): the batch kernels find the level by counting up to it, so
+// each level is checked against the reference on its own, in both variants, through
+// sampleImplicit and through the ImplicitKernel entry. t texels per pixel as in
+// BatchesMixingLevelsMatchTheReference (level round(log2 t), clamped to [0, 6]).
+TEST(SamplerIsaVariants, BatchesOfOneLevelMatchTheReferenceOnEveryLevel) {
+  const auto tex = randomTexture(64, 64, 0, 23);
+  ASSERT_EQ(tex->levelCount(), 7);
+  std::mt19937 rng(57);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float texelsPerPixel[] = {0.6f, 1.2f, 2.4f, 4.8f, 9.6f, 19.2f, 38.4f, 76.8f, 153.6f};
+  const CpuIsa previous = activeIsa();
+  const bool avx512 = detectedIsa() == CpuIsa::Avx512;
+  int throughKernel = 0;
+  for (int iter = 0; iter < 900; ++iter) {
+    SamplerState s;
+    s.addressU = kModes[rng() % 4], s.addressV = kModes[rng() % 4];
+    s.magFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+    s.minFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+    s.mipFilter = TextureFilter::Point;
+    const float step = texelsPerPixel[iter % 9] / 64.0f;
+    alignas(64) float u[N], v[N];
+    for (int q = 0; q < 4; ++q) {
+      const float u0 = unit(rng) * 4 - 2, v0 = unit(rng) * 4 - 2;
+      for (int k = 0; k < 4; ++k)
+        u[4 * q + k] = u0 + step * float(k & 1), v[4 * q + k] = v0 + step * float(k >> 1);
+    }
+    const uint16_t mask = iter % 5 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+    SampleRequest req;
+    req.u = u, req.v = v, req.laneMask = mask;
+    float expected[4][N];
+    sampleTextureReference(*tex, s, req, expected);
+    for (CpuIsa isa : {CpuIsa::Avx2, CpuIsa::Avx512}) {
+      if (isa == CpuIsa::Avx512 && !avx512) continue;
+      setActiveIsa(isa);
+      const PreparedSampler prepared(*tex, s);
+      float a[4][N], b[4][N];
+      prepared.sampleImplicit(u, v, nullptr, mask, a);
+      ASSERT_EQ(std::memcmp(expected, a, sizeof a), 0) << "iter " << iter << " isa " << int(isa);
+      if (const auto& kernel = prepared.implicitKernel(); kernel.fn) {
+        kernel.fn(kernel.context, u, v, nullptr, mask, b);
+        ASSERT_EQ(std::memcmp(expected, b, sizeof b), 0) << "iter " << iter << " isa " << int(isa);
+        ++throughKernel;
+      }
+    }
+  }
+  setActiveIsa(previous);
+  if (avx512) {
+    EXPECT_EQ(throughKernel, 900);
+  }
+}
+
+// PreparedSampler::implicitKernel: there for a 2D texture whose state the AVX-512 batch
+// kernel serves (MIPFILTER NONE or POINT with λ needed, no LOD bias), null otherwise;
+// where there, it gives what the reference gives for every kind of coordinates, lane
+// mask and state, the batches the kernel declines included (special values, biased
+// or blended states are not given one).
+TEST(SamplerIsaVariants, ImplicitKernelMatchesTheReference) {
+  if (detectedIsa() != CpuIsa::Avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
+  const CpuIsa previous = activeIsa();
+  std::mt19937 rng(91);
+  const int sizes[][2] = {{1, 1}, {2, 2}, {17, 5}, {64, 64}};
+  int withKernel = 0, withoutKernel = 0;
+  for (const auto& size : sizes) {
+    const auto tex = randomTexture(size[0], size[1], 0, uint32_t(size[0] + 7 * size[1]));
+    for (int iter = 0; iter < 400; ++iter) {
+      SamplerState s;
+      s.addressU = kModes[rng() % 4], s.addressV = kModes[rng() % 4];
+      s.magFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+      s.minFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+      s.mipFilter = TextureFilter(rng() % 3);  // NONE, POINT, LINEAR
+      s.mipLodBias = iter % 7 == 3 ? 0.25f : 0.0f;
+      setActiveIsa(iter % 9 == 4 ? CpuIsa::Avx2 : CpuIsa::Avx512);
+      const PreparedSampler prepared(*tex, s);
+      const bool needLambda = s.mipFilter != TextureFilter::None || s.magFilter != s.minFilter;
+      const bool expectKernel = activeIsa() == CpuIsa::Avx512 && needLambda &&
+                                s.mipFilter != TextureFilter::Linear && s.mipLodBias == 0.0f;
+      const auto& kernel = prepared.implicitKernel();
+      ASSERT_EQ(kernel.fn != nullptr, expectKernel) << "iter " << iter;
+      if (!kernel.fn) {
+        ++withoutKernel;
+        continue;
+      }
+      alignas(64) float u[N], v[N];
+      fillCoords(rng, iter % 4, size[0], size[1], u, v);
+      const uint16_t mask = iter % 3 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+      SampleRequest req;
+      req.u = u, req.v = v, req.laneMask = mask;
+      float expected[4][N], got[4][N];
+      sampleTextureReference(*tex, s, req, expected);
+      kernel.fn(kernel.context, u, v, nullptr, mask, got);
+      ASSERT_EQ(std::memcmp(expected, got, sizeof got), 0)
+          << size[0] << "x" << size[1] << " iter " << iter;
+      ++withKernel;
+    }
+  }
+  setActiveIsa(previous);
+  EXPECT_GT(withKernel, 500);
+  EXPECT_GT(withoutKernel, 500);
+}
+
 }  // namespace
 }  // namespace refx
