@@ -265,19 +265,18 @@ void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out
 }
 
 // A batch whose quads chose different levels or filters: each (level, filter) of the
-// four quads samples its quads' lanes, `k` holding (level << 1) | linear of each quad in
-// its four lanes.
+// four quads samples its quads' lanes, `k` holding (level << 1) | linear of quad q in
+// its lane q.
 // Every lane belongs to one quad, so every lane in `mask` is written once; the others
 // read 0. Lanes are independent in the kernel, so this is what a batch of one key gives
 // on those lanes. False (nothing written) when a level is not for the kernels, after
 // plan.rest with Rest.
 template <TextureAddress AU, TextureAddress AV, bool Rest>
 [[gnu::noinline]] bool mixedLevels16(const UniformPlan& plan, const float* u, const float* v,
-                                     const float* w, uint32_t mask, __m512i k,
+                                     const float* w, uint32_t mask, __m128i k,
                                      float out[4][kLanes]) {
-  alignas(64) int lanes[16];  // here, not in the caller: its frame stays unaligned
-  _mm512_store_si512(lanes, k);
-  const int keys[4] = {lanes[0], lanes[4], lanes[8], lanes[12]};
+  int keys[4];
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(keys), k);
   for (int q = 0; q < 4; ++q) {
     if (!plan.levels[keys[q] >> 1]) {
       if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
@@ -313,34 +312,40 @@ template <TextureAddress AU, TextureAddress AV, bool Rest>
     if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
     return false;
   };
-  v16f x, y;
-  std::memcpy(&x, u, sizeof x);
-  std::memcpy(&y, v, sizeof y);
-  // Lane 0 of each block is the quad's top-left: tr - tl and bl - tl in lanes 1 and 2.
-  const v16f du = (x - v16f(_mm512_shuffle_ps(__m512(x), __m512(x), 0x00))) * splat(plan.size[0]);
-  const v16f dv = (y - v16f(_mm512_shuffle_ps(__m512(y), __m512(y), 0x00))) * splat(plan.size[1]);
-  const v16f sq = du * du + dv * dv;
-  const v16f la = v16f(_mm512_shuffle_ps(__m512(sq), __m512(sq), 0x55));
-  const v16f lb = v16f(_mm512_shuffle_ps(__m512(sq), __m512(sq), 0xaa));
-  const v16f ms = la < lb ? lb : la;  // std::max(la, lb)
+  typedef float v4f __attribute__((vector_size(16)));
+  typedef int v4i __attribute__((vector_size(16)));
+  typedef uint32_t v4u __attribute__((vector_size(16)));
+  const __m512 x = _mm512_loadu_ps(u), y = _mm512_loadu_ps(v);
+  // Quad q's lanes tl, tr, bl are 4q, 4q + 1, 4q + 2: the differences of the quads' u
+  // and v as one register, (tr - tl of quads 0..3, bl - tl of quads 0..3) for u, then
+  // for v, scaled by the level-0 size; the rest works on one value per quad.
+  const __m512i far = _mm512_setr_epi32(1, 5, 9, 13, 2, 6, 10, 14, 17, 21, 25, 29, 18, 22, 26, 30);
+  const __m512i near = _mm512_setr_epi32(0, 4, 8, 12, 0, 4, 8, 12, 16, 20, 24, 28, 16, 20, 24, 28);
+  const v16f size = v16f(_mm512_mask_broadcastss_ps(_mm512_set1_ps(plan.size[0]), 0xff00,
+                                                    _mm_set_ss(plan.size[1])));
+  const v16f d = (v16f(_mm512_permutex2var_ps(x, far, y)) - v16f(_mm512_permutex2var_ps(x, near, y))) * size;
+  const v16f d2 = d * d;
+  // du·du + dv·dv for the vectors a (tr - tl) and b (bl - tl) of each quad.
+  typedef float v8f __attribute__((vector_size(32)));
+  const v8f sq = v8f(_mm512_castps512_ps256(__m512(d2))) + v8f(_mm512_extractf32x8_ps(__m512(d2), 1));
+  const v4f la = v4f(_mm256_castps256_ps128(__m256(sq))), lb = v4f(_mm256_extractf128_ps(__m256(sq), 1));
+  const v4f ms = la < lb ? lb : la;  // std::max(la, lb)
   // Normal, positive and finite, mantissa in [0x1000, 0x7ff000): as two unsigned
   // range checks, independent of each other.
-  const v16i bits = v16i(ms), mant = bits & 0x7fffff;
-  const __mmask16 normal = _mm512_cmplt_epu32_mask(__m512i(bits - 0x00800000),
-                                                   _mm512_set1_epi32(0x7f000000));
-  const __mmask16 inside = _mm512_cmplt_epu32_mask(__m512i(mant - 0x1000),
-                                                   _mm512_set1_epi32(0x7ff000 - 0x1000));
-  if (__mmask16(normal & inside) != 0xffff) return decline();
-  const v16i e = v16i(v16u(bits) >> 23) - 127;
-  const v16i linear = e >= 0 ? v16i{} + plan.minLinear : v16i{} + plan.magLinear;
-  v16i level = (e + 1) >> 1;
-  level = level < plan.first ? v16i{} + plan.first : level;
-  level = level > plan.last ? v16i{} + plan.last : level;
-  if (plan.mipNone) level = v16i{};
-  const v16i k = (level << 1) | linear;
-  const int key = _mm_cvtsi128_si32(_mm512_castsi512_si128(__m512i(k)));
-  if (_mm512_cmpeq_epi32_mask(__m512i(k), _mm512_set1_epi32(key)) != 0xffff) {
-    return mixedLevels16<AU, AV, Rest>(plan, u, v, w, mask, __m512i(k), out);
+  const v4i bits = v4i(ms), mant = bits & 0x7fffff;
+  const __mmask8 normal = _mm_cmplt_epu32_mask(__m128i(bits - 0x00800000), _mm_set1_epi32(0x7f000000));
+  const __mmask8 inside = _mm_cmplt_epu32_mask(__m128i(mant - 0x1000), _mm_set1_epi32(0x7ff000 - 0x1000));
+  if (__mmask8(normal & inside) != 0xf) return decline();
+  const v4i e = v4i(v4u(bits) >> 23) - 127;
+  const v4i linear = e >= 0 ? v4i{} + plan.minLinear : v4i{} + plan.magLinear;
+  v4i level = (e + 1) >> 1;
+  level = level < plan.first ? v4i{} + plan.first : level;
+  level = level > plan.last ? v4i{} + plan.last : level;
+  if (plan.mipNone) level = v4i{};
+  const v4i k = (level << 1) | linear;  // per quad
+  const int key = k[0];
+  if (_mm_cmpeq_epi32_mask(__m128i(k), _mm_set1_epi32(key)) != 0xf) {
+    return mixedLevels16<AU, AV, Rest>(plan, u, v, w, mask, __m128i(k), out);
   }
   const SampleLevel* lv = levelByCount(plan.levels, key >> 1);  // 0 <= key >> 1 <= last
   if (!lv) return decline();
