@@ -755,10 +755,12 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
       const Fetched& f = fetched[k / 8];
       const v8u m = v8u{} + 0x00ff00ffu;
       const v16h wx2 = weightPairs(f.fixedX);
+      // (p >> 8) & 0x00ff00ff is the 16-bit halves shifted right by 8 (one vpsrlw).
+      const auto highBytes = [](v8u p) { return v8u(v16h(p) >> 8); };
       const v16h topRB = rowLerp(f.p00 & m, f.p10 & m, wx2);
-      const v16h topGA = rowLerp((f.p00 >> 8) & m, (f.p10 >> 8) & m, wx2);
+      const v16h topGA = rowLerp(highBytes(f.p00), highBytes(f.p10), wx2);
       const v16h bottomRB = rowLerp(f.p01 & m, f.p11 & m, wx2);
-      const v16h bottomGA = rowLerp((f.p01 >> 8) & m, (f.p11 >> 8) & m, wx2);
+      const v16h bottomGA = rowLerp(highBytes(f.p01), highBytes(f.p11), wx2);
       const v8f fy = toFloat(f.fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
       const v8f r = columnLerp<0>(topRB, bottomRB, fy), g = columnLerp<0>(topGA, bottomGA, fy);
       const v8f b = columnLerp<16>(topRB, bottomRB, fy), a = columnLerp<16>(topGA, bottomGA, fy);

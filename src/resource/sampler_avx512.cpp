@@ -245,12 +245,15 @@ inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mm
       }
     }
     const v16u m = v16u{} + 0x00ff00ffu;
-    const v16u wx = v16u(fixedX) & 255u;
-    const v32h wx2 = v32h(wx | (wx << 16));
+    // The weight (low byte of fixedX) in both 16-bit halves of each lane, by one vpshufb.
+    const __m512i weightBytes = _mm512_set4_epi32(0xff0cff0c, 0xff08ff08, 0xff04ff04, 0xff00ff00);
+    const v32h wx2 = v32h(_mm512_shuffle_epi8(__m512i(fixedX), weightBytes));
+    // (p >> 8) & 0x00ff00ff is the 16-bit halves shifted right by 8 (one vpsrlw).
+    const auto highBytes = [](v16u p) { return v16u(v32h(p) >> 8); };
     const v32h topRB = rowLerp(p00 & m, p10 & m, wx2);
-    const v32h topGA = rowLerp((p00 >> 8) & m, (p10 >> 8) & m, wx2);
+    const v32h topGA = rowLerp(highBytes(p00), highBytes(p10), wx2);
     const v32h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
-    const v32h bottomGA = rowLerp((p01 >> 8) & m, (p11 >> 8) & m, wx2);
+    const v32h bottomGA = rowLerp(highBytes(p01), highBytes(p11), wx2);
     const v16f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
     store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
     store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
