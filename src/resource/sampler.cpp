@@ -677,13 +677,12 @@ inline v8f fmadd(v8f a, v8f b, v8f c) {
 #endif
 }
 
-// b/255 for integer b in 0..255, correctly rounded like the division: a product with
-// the reciprocal and one fma correction step (exact for all 256 values; a test checks
-// every one), without vdivps.
+// b/255 for integer b in 0..255, correctly rounded like the division: fma(b, hi, b·lo)
+// with the reciprocal split in two floats (exact for all 256 values; tests check every
+// one), without vdivps.
 inline v8f byteOver255(v8f b) {
 #if defined(__FMA__)
-  const v8f q = b * kInv255;
-  return fmadd(fmadd(-q, v8f{} + 255.0f, b), v8f{} + kInv255, q);
+  return fmadd(b, v8f{} + kInv255Hi, b * kInv255Lo);
 #else
   return b / 255.0f;
 #endif
@@ -697,15 +696,14 @@ inline v8f columnLerp(v16h top, v16h bottom, v8f wy) {
   const v8u mask = v8u{} + (Shift ? 0xffffffffu : 0xffffu);
   const v8f t = toFloat(v8i((v8u(top) >> Shift) & mask));
   const v8f b = toFloat(v8i((v8u(bottom) >> Shift) & mask));
-  // x / 65280 without a division (whose throughput limits this loop): q = x·(1/65280)
-  // is within an ulp, and one fma correction step makes it the correctly rounded
-  // quotient. Checked exhaustively for every x = S/256, S in [0, 255·65536].
+  // x / 65280 without a division (whose throughput limits this loop): fma(x, hi, x·lo)
+  // with 1/65280 split in two floats is the correctly rounded quotient, checked
+  // exhaustively for every x = S/256, S in [0, 255·65536].
   const v8f x = fmadd(b - t, wy, t);
 #if defined(__FMA__)
-  const v8f q = x * kInv65280;
-  return fmadd(fmadd(-q, v8f{} + 65280.0f, x), v8f{} + kInv65280, q);
+  return fmadd(x, v8f{} + kInv65280Hi, x * kInv65280Lo);
 #else
-  return x / 65280.0f;  // the correction step needs a fused multiply-add
+  return x / 65280.0f;  // the split reciprocal needs a fused multiply-add
 #endif
 }
 

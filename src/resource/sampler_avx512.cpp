@@ -179,10 +179,7 @@ inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& 
 inline v16f channel(v16u p, int shift) { return toFloat(v16i((p >> shift) & 255u)); }
 
 // b/255 for integer b in 0..255, correctly rounded (byteOver255 of sampler.cpp).
-inline v16f byteOver255(v16f b) {
-  const v16f q = b * kInv255;
-  return fmadd(fmadd(-q, splat(255.0f), b), splat(kInv255), q);
-}
+inline v16f byteOver255(v16f b) { return fmadd(b, splat(kInv255Hi), b * kInv255Lo); }
 
 // Row lerp in 16-bit lanes, two channels per 32-bit lane (rowLerp of sampler.cpp).
 inline v32h rowLerp(v16u t0, v16u t1, v32h wx) {
@@ -198,8 +195,7 @@ inline v16f columnLerp(v32h top, v32h bottom, v16f wy) {
   const v16f t = toFloat(v16i((v16u(top) >> Shift) & mask));
   const v16f b = toFloat(v16i((v16u(bottom) >> Shift) & mask));
   const v16f x = fmadd(b - t, wy, t);
-  const v16f q = x * kInv65280;
-  return fmadd(fmadd(-q, splat(65280.0f), x), splat(kInv65280), q);
+  return fmadd(x, splat(kInv65280Hi), x * kInv65280Lo);
 }
 
 // Lanes outside `mask` store 0 (clearLanes of sampler.cpp), or with Merge keep what

@@ -59,10 +59,14 @@ constexpr float kWeightUnit = 1.0f / kWeightScale;
 // float has no fraction left, and it keeps every later step in int range.
 constexpr float kCoordLimit = 4194304.0f;
 
-// x / 65280 and b / 255 are formed as a product with the reciprocal and one fma
-// correction step (see columnLerp and byteOver255).
-constexpr float kInv65280 = 1.0f / 65280.0f;
-constexpr float kInv255 = 1.0f / 255.0f;
+// x / 65280 and b / 255 without a division: the reciprocal as an unevaluated sum of two
+// floats, hi + lo, and fma(x, hi, x·lo), which is the correctly rounded quotient for
+// every value the kernels divide (x = S/256, S in [0, 255·65536]; b in 0..255):
+// tests/resource/test_filter_quotient.cpp checks all of them.
+constexpr float kInv65280Hi = float(1.0 / 65280.0);
+constexpr float kInv65280Lo = float(1.0 / 65280.0 - double(kInv65280Hi));
+constexpr float kInv255Hi = float(1.0 / 255.0);
+constexpr float kInv255Lo = float(1.0 / 255.0 - double(kInv255Hi));
 
 // Texel-space positions are clamped to [lo, hi] before conversion to int. It never
 // changes the texels of a finite coordinate and keeps indices small. (static: each
