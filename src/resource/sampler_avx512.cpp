@@ -299,10 +299,10 @@ template <TextureAddress AU, TextureAddress AV, bool Rest>
 }
 
 // sample2DUniform's classification of the four quads at once (see there): ρ² of each
-// quad with the same operations in the same order, in all four lanes of its 128-bit
-// block; the exponent gives λ's side of 0 and the nearest level when the mantissa keeps
-// log2 away from an integer. With Rest, a batch it declines goes on to plan.rest, as a
-// tail call (the common path then calls nothing and keeps nothing across a call).
+// quad with the same operations in the same order, one lane per quad; the exponent
+// gives λ's side of 0 and the nearest level when the mantissa keeps log2 away from an
+// integer. With Rest, a batch it declines goes on to plan.rest, as a tail call (the
+// common path then calls nothing and keeps nothing across a call).
 template <TextureAddress AU, TextureAddress AV, bool Rest>
 [[gnu::always_inline]] inline bool uniformBatch16(const UniformPlan& plan, const float* u,
                                                   const float* v, const float* w,
