@@ -208,9 +208,11 @@ inline void store(float* p, v16f v, __mmask16 mask) {
     _mm512_storeu_ps(p, _mm512_maskz_mov_ps(mask, __m512(v)));
 }
 
+// Out of line: its callers reach it by a jump, and the batch classification in front of
+// it keeps a frame without stack realignment (this one's 64-byte index buffers).
 template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false>
-inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mmask16 mask,
-                     float out[4][kLanes]) {
+[[gnu::noinline]] void filter16(const SampleLevel& lv, const float* u, const float* v,
+                                __mmask16 mask, float out[4][kLanes]) {
   const int w = lv.width, h = lv.height;
   float loU, hiU, loV, hiV;
   positionRange(AU, w, loU, hiU);
