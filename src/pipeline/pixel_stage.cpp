@@ -49,8 +49,8 @@ void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatc
 
 namespace {
 
-// sampleBound for a sampler whose prepared state has a batch kernel: implicit lookups
-// (λ from quad derivatives) jump straight to it.
+// sampleBound for a sampler whose prepared state has the one-level 2D paths: implicit
+// lookups (λ from quad derivatives) jump straight to them.
 void sampleBoundKernel(const void* ctx, exec::SampleMode mode, const float (*co)[kBatchLanes],
                        uint16_t laneMask, float (*out)[kBatchLanes]) {
   const auto* b = static_cast<const BoundSampler*>(ctx);

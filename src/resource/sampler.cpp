@@ -1409,7 +1409,8 @@ PreparedSampler::PreparedSampler(const Texture& tex, const SamplerState& state)
   const bool aniso = anisotropicFootprint(tex, state) && anisotropyLimit(state) > 1;
   if (tex.type() == TextureType::Texture2D && tex.levelCount() > 0 && !aniso) {
     auto plan = std::make_shared<const PreparedPlan>(tex, state, addr);
-    if (plan->implicit) implicit_ = {plan->implicit, &plan->uniformPlan};
+    implicit_ = plan->implicit ? ImplicitKernel{plan->implicit, &plan->uniformPlan}
+                               : ImplicitKernel{PreparedPlan::sampleImplicitRest, plan.get()};
     plan_ = std::move(plan);
   }
 }
@@ -1460,10 +1461,6 @@ void PreparedSampler::sampleImplicit(const float* u, const float* v, const float
   // from derivatives without mip blending, so the kernel comes first.
   if (implicit_.fn) {
     implicit_.fn(implicit_.context, u ? u : kZeros, v ? v : kZeros, w, laneMask, out);
-    return;
-  }
-  if (plan_) {
-    PreparedPlan::sampleImplicitRest(plan_.get(), u, v, w, laneMask, out);
     return;
   }
   SampleRequest req;

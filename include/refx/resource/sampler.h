@@ -69,11 +69,12 @@ class PreparedSampler {
   void sampleImplicit(const float* u, const float* v, const float* w, uint16_t laneMask,
                       float out[4][kBatchLanes]) const;
 
-  // sampleImplicit as one function and its context, where the texture and state have a
-  // batch kernel (fn null otherwise): fn(context, u, v, w, laneMask, out), u and v not
-  // null, gives what sampleImplicit gives. Callers that sample through a function
-  // pointer reach the kernel with no call in between. The context is shared by copies
-  // of this PreparedSampler and lives as long as the last of them.
+  // sampleImplicit as one function and its context, where the texture and state have
+  // the one-level 2D paths (fn null otherwise: ANISOTROPIC, cube and volume textures):
+  // fn(context, u, v, w, laneMask, out), u and v not null, gives what sampleImplicit
+  // gives. Callers that sample through a function pointer reach the batch kernel (the
+  // AVX-512 one where the state allows it) with no call in between. The context is
+  // shared by copies of this PreparedSampler and lives as long as the last of them.
   struct ImplicitKernel {
     void (*fn)(const void* context, const float* u, const float* v, const float* w,
                uint16_t laneMask, float (*out)[kBatchLanes]) = nullptr;
