@@ -300,5 +300,79 @@ TEST(SamplerIsaVariants, ImplicitKernelMatchesTheReference) {
   EXPECT_EQ(PreparedSampler(*cube, SamplerState{}).implicitKernel().fn, nullptr);
 }
 
+// Screen-like batches (4x4 pixels in quad order, 0.5, 1 or 1.33 texels per pixel, the
+// common case of the batch kernels, whose 2x2 texels are adjacent in memory) at every
+// half-texel offset around and across the edges of small levels (widths and heights
+// 1, 2, 4, 8, 16, 17), every addressing pair, both filters and several lane masks: the
+// kernels of both variants and the prepared paths agree with the reference bit for bit,
+// where the footprints wrap, mirror or clamp and where they do not.
+TEST(SamplerIsaVariants, ScreenFootprintsAroundLevelEdgesMatchTheReference) {
+  const bool avx512 = detectedIsa() == CpuIsa::Avx512;
+  const CpuIsa previous = activeIsa();
+  const int sides[] = {1, 2, 4, 8, 16, 17};
+  const float steps[] = {0.5f, 1.0f, 1.33f};
+  const uint16_t masks[] = {0xffff, 0x0ff0, 0x8001, 0x0000};
+  std::mt19937 rng(3);
+  long compared = 0;
+  for (int w : sides)
+    for (int h : sides) {
+      if ((w + h) % 3 == 1) continue;  // a spread of the 36 shapes keeps the test short
+      const auto tex = randomTexture(w, h, 1, uint32_t(w * 100 + h));
+      const SampleLevel& lv = tex->sampleLevel(0, 0);
+      for (TextureAddress au : kModes)
+        for (TextureAddress av : kModes)
+          for (bool linear : {false, true}) {
+            SamplerState s;
+            s.addressU = au, s.addressV = av;
+            s.magFilter = s.minFilter = linear ? TextureFilter::Linear : TextureFilter::Point;
+            const Kernel2D kernels[2] = {
+                selectKernel2D(au, av, linear, CpuIsa::Avx2),
+                avx512 ? selectKernel2D(au, av, linear, CpuIsa::Avx512) : nullptr};
+            for (int ox = -6; ox <= 2 * w + 4; ox += 1 + w / 8)
+              for (int oy = -6; oy <= 2 * h + 4; oy += 1 + h / 8) {
+                const float step = steps[(ox + oy + 12) % 3];
+                alignas(64) float u[N], v[N];
+                for (int l = 0; l < N; ++l) {
+                  const int q = l >> 2, px = (q & 1) * 2 + (l & 1), py = (q >> 1) * 2 + (l >> 1 & 1);
+                  u[l] = (0.5f * float(ox) + step * float(px)) / float(w);
+                  v[l] = (0.5f * float(oy) + step * float(py)) / float(h);
+                }
+                const uint16_t mask = masks[rng() % 4];
+                SampleRequest req;
+                req.u = u, req.v = v;
+                float whole[4][N], ref[4][N], got[4][N];
+                sampleTextureReference(*tex, s, req, whole);
+                req.laneMask = mask;
+                sampleTextureReference(*tex, s, req, ref);
+                for (const Kernel2D kernel : kernels) {
+                  if (!kernel) continue;
+                  kernel(lv, u, v, got);
+                  ASSERT_EQ(std::memcmp(whole, got, sizeof got), 0)
+                      << w << "x" << h << " " << int(au) << "/" << int(av) << " linear " << linear
+                      << " at " << ox << "," << oy << " step " << step;
+                }
+                // MIPFILTER NONE takes the one-kernel path, POINT (one level here, the
+                // same texels) the batch classification in front of the kernel.
+                for (CpuIsa isa : {CpuIsa::Avx2, CpuIsa::Avx512})
+                  for (TextureFilter mip : {TextureFilter::None, TextureFilter::Point}) {
+                    if (isa == CpuIsa::Avx512 && !avx512) continue;
+                    setActiveIsa(isa);
+                    SamplerState sm = s;
+                    sm.mipFilter = mip;
+                    const PreparedSampler prepared(*tex, sm);
+                    prepared.sampleImplicit(u, v, nullptr, mask, got);
+                    ASSERT_EQ(std::memcmp(ref, got, sizeof got), 0)
+                        << w << "x" << h << " " << int(au) << "/" << int(av) << " linear "
+                        << linear << " at " << ox << "," << oy << " mask " << mask << " isa "
+                        << int(isa) << " mip " << int(mip);
+                  }
+                ++compared;
+              }
+          }
+    }
+  setActiveIsa(previous);
+  EXPECT_GT(compared, 20000);
+}
+
 }  // namespace
 }  // namespace refx
