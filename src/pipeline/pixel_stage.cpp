@@ -47,14 +47,30 @@ void sampleBound(const void* ctx, exec::SampleMode mode, const float (*co)[kBatc
   else sampleTexture(*b->texture, b->state, req, out);
 }
 
+namespace {
+
+// sampleBound for a sampler whose prepared state has the one-level 2D paths: implicit
+// lookups (λ from quad derivatives) jump straight to them.
+void sampleBoundKernel(const void* ctx, exec::SampleMode mode, const float (*co)[kBatchLanes],
+                       uint16_t laneMask, float (*out)[kBatchLanes]) {
+  const auto* b = static_cast<const BoundSampler*>(ctx);
+  if (mode != exec::SampleMode::Implicit) return sampleBound(ctx, mode, co, laneMask, out);
+  const PreparedSampler::ImplicitKernel& kernel = b->prepared->implicitKernel();
+  kernel.fn(kernel.context, co[0], co[1], co[2], laneMask, out);
+}
+
+}  // namespace
+
 void bindPixelStage(const DrawPlan& plan, const DeviceState& st, PixelBindings& b, RasterDraw& d) {
   for (int s = 0; s < kMaxPixelSamplers; ++s) {
     BoundSampler& bound = b.bound[size_t(s)];
     bound.texture = st.textures[s].get();
     bound.state = plan.samplers[size_t(s)];
-    if (bound.texture && (plan.pixelSamplersUsed >> s & 1)) bound.prepared.emplace(*bound.texture, bound.state);
+    const bool prepared = bound.texture && (plan.pixelSamplersUsed >> s & 1);
+    if (prepared) bound.prepared.emplace(*bound.texture, bound.state);
     b.samplers[size_t(s)].context = &bound;
-    b.samplers[size_t(s)].sample = sampleBound;
+    b.samplers[size_t(s)].sample =
+        prepared && bound.prepared->implicitKernel().fn ? sampleBoundKernel : sampleBound;
   }
   // The constant file: a pixel shader's float constants and the bump environment
   // (exec/abi.h); below ps_3_0, and for fixed function, the values the texture stages

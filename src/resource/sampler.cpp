@@ -677,13 +677,12 @@ inline v8f fmadd(v8f a, v8f b, v8f c) {
 #endif
 }
 
-// b/255 for integer b in 0..255, correctly rounded like the division: a product with
-// the reciprocal and one fma correction step (exact for all 256 values; a test checks
-// every one), without vdivps.
+// b/255 for integer b in 0..255, correctly rounded like the division: fma(b, hi, b·lo)
+// with the reciprocal split in two floats (exact for all 256 values; tests check every
+// one), without vdivps.
 inline v8f byteOver255(v8f b) {
 #if defined(__FMA__)
-  const v8f q = b * kInv255;
-  return fmadd(fmadd(-q, v8f{} + 255.0f, b), v8f{} + kInv255, q);
+  return fmadd(b, v8f{} + kInv255Hi, b * kInv255Lo);
 #else
   return b / 255.0f;
 #endif
@@ -697,15 +696,14 @@ inline v8f columnLerp(v16h top, v16h bottom, v8f wy) {
   const v8u mask = v8u{} + (Shift ? 0xffffffffu : 0xffffu);
   const v8f t = toFloat(v8i((v8u(top) >> Shift) & mask));
   const v8f b = toFloat(v8i((v8u(bottom) >> Shift) & mask));
-  // x / 65280 without a division (whose throughput limits this loop): q = x·(1/65280)
-  // is within an ulp, and one fma correction step makes it the correctly rounded
-  // quotient. Checked exhaustively for every x = S/256, S in [0, 255·65536].
+  // x / 65280 without a division (whose throughput limits this loop): fma(x, hi, x·lo)
+  // with 1/65280 split in two floats is the correctly rounded quotient, checked
+  // exhaustively for every x = S/256, S in [0, 255·65536].
   const v8f x = fmadd(b - t, wy, t);
 #if defined(__FMA__)
-  const v8f q = x * kInv65280;
-  return fmadd(fmadd(-q, v8f{} + 65280.0f, x), v8f{} + kInv65280, q);
+  return fmadd(x, v8f{} + kInv65280Hi, x * kInv65280Lo);
 #else
-  return x / 65280.0f;  // the correction step needs a fused multiply-add
+  return x / 65280.0f;  // the split reciprocal needs a fused multiply-add
 #endif
 }
 
@@ -755,10 +753,12 @@ void kernel2DFor(const SampleLevel& lv, const float* u, const float* v, float ou
       const Fetched& f = fetched[k / 8];
       const v8u m = v8u{} + 0x00ff00ffu;
       const v16h wx2 = weightPairs(f.fixedX);
+      // (p >> 8) & 0x00ff00ff is the 16-bit halves shifted right by 8 (one vpsrlw).
+      const auto highBytes = [](v8u p) { return v8u(v16h(p) >> 8); };
       const v16h topRB = rowLerp(f.p00 & m, f.p10 & m, wx2);
-      const v16h topGA = rowLerp((f.p00 >> 8) & m, (f.p10 >> 8) & m, wx2);
+      const v16h topGA = rowLerp(highBytes(f.p00), highBytes(f.p10), wx2);
       const v16h bottomRB = rowLerp(f.p01 & m, f.p11 & m, wx2);
-      const v16h bottomGA = rowLerp((f.p01 >> 8) & m, (f.p11 >> 8) & m, wx2);
+      const v16h bottomGA = rowLerp(highBytes(f.p01), highBytes(f.p11), wx2);
       const v8f fy = toFloat(f.fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
       const v8f r = columnLerp<0>(topRB, bottomRB, fy), g = columnLerp<0>(topGA, bottomGA, fy);
       const v8f b = columnLerp<16>(topRB, bottomRB, fy), a = columnLerp<16>(topGA, bottomGA, fy);
@@ -1230,7 +1230,8 @@ struct Fast2D {
     key = keys[q] = k;
   }
   if (mixed) return sample2DMixed(f, c, mask, keys, out);
-  const SampleLevel* lv = f.levels ? f.levels[key >> 1] : &f.tex->sampleLevel(0, key >> 1);
+  const SampleLevel* lv =
+      f.levels ? levelByCount(f.levels, key >> 1) : &f.tex->sampleLevel(0, key >> 1);
   if (!lv || (!f.levels && !fastLevel(*lv, st, f.addr))) return false;
   const Kernel2D kernel = f.kernels[key & 1];
   (kernel ? kernel : selectKernel2D(f.addr[0], f.addr[1], key & 1))(*lv, c[0], c[1], out);
@@ -1363,8 +1364,10 @@ struct PreparedPlan {
   Fast2D fast;
   bool needLambda;
   Kernel2D single = nullptr;  // no λ needed: kernel for level 0 (levels[0] set)
-  // sample2DUniform's common case in one step where the instruction set has it.
+  // sample2DUniform's common case in one step where the instruction set has it, and
+  // with sampleImplicit's other paths behind it (context: uniformPlan).
   resource::Uniform2D uniform = nullptr;
+  resource::Implicit2D implicit = nullptr;
   resource::UniformPlan uniformPlan{};
 
   PreparedPlan(const Texture& tex, const SamplerState& state, const TextureAddress addr[3])
@@ -1383,10 +1386,17 @@ struct PreparedPlan {
     if (needLambda && st.mipFilter != TextureFilter::Linear && st.mipLodBias == 0.0f &&
         activeIsa() == CpuIsa::Avx512) {
       uniform = resource::selectUniform2DAvx512(addr[0], addr[1]);
+      implicit = resource::selectImplicit2DAvx512(addr[0], addr[1]);
       uniformPlan = {{fast.size[0], fast.size[1]}, fast.first, fast.last, fast.minLinear,
-                     fast.magLinear, fast.mipNone, levels.data()};
+                     fast.magLinear, fast.mipNone, levels.data(), sampleImplicitRest, this};
     }
   }
+
+  // sampleImplicit past the batch kernel (tried and declined, or not there): out of
+  // line, so that the common call does not set up this path's frame.
+  [[gnu::noinline]] static void sampleImplicitRest(const void* plan, const float* u,
+                                                   const float* v, const float* w,
+                                                   uint16_t laneMask, float (*out)[kBatchLanes]);
 };
 
 }  // namespace
@@ -1397,8 +1407,12 @@ PreparedSampler::PreparedSampler(const Texture& tex, const SamplerState& state)
                                   validAddress(state.addressW)};
   // ANISOTROPIC (beyond MAXANISOTROPY 1) goes through sampleImpl every time.
   const bool aniso = anisotropicFootprint(tex, state) && anisotropyLimit(state) > 1;
-  if (tex.type() == TextureType::Texture2D && tex.levelCount() > 0 && !aniso)
-    plan_ = std::make_shared<const PreparedPlan>(tex, state, addr);
+  if (tex.type() == TextureType::Texture2D && tex.levelCount() > 0 && !aniso) {
+    auto plan = std::make_shared<const PreparedPlan>(tex, state, addr);
+    implicit_ = plan->implicit ? ImplicitKernel{plan->implicit, &plan->uniformPlan}
+                               : ImplicitKernel{PreparedPlan::sampleImplicitRest, plan.get()};
+    plan_ = std::move(plan);
+  }
 }
 
 namespace {
@@ -1422,20 +1436,18 @@ namespace {
          sample2DUniform(p->fast, c, laneMask, out);
 }
 
-// sampleImplicit past the batch kernel (tried and declined, or not there) for a plan:
-// out of line, so that the common call does not set up this path's frame, and with
-// its arguments in registers, so that the call to it is a jump.
-[[gnu::noinline]] void sampleImplicitRest(const PreparedPlan* p, const float* u, const float* v,
-                                          const float* w, uint16_t laneMask,
-                                          float out[4][kBatchLanes]) {
+}  // namespace
+
+void PreparedPlan::sampleImplicitRest(const void* plan, const float* u, const float* v,
+                                      const float* w, uint16_t laneMask,
+                                      float (*out)[kBatchLanes]) {
+  const auto* p = static_cast<const PreparedPlan*>(plan);
   if (samplePrepared(p, u, v, w, true, laneMask, out, false)) return;
   SampleRequest req;
   req.u = u, req.v = v, req.w = w;
   req.laneMask = laneMask;
   sampleImpl(*p->fast.tex, p->st, req, out, true);
 }
-
-}  // namespace
 
 void PreparedSampler::sample(const SampleRequest& req, float out[4][kBatchLanes]) const {
   if (!samplePrepared(static_cast<const PreparedPlan*>(plan_.get()), req.u, req.v, req.w,
@@ -1447,10 +1459,8 @@ void PreparedSampler::sampleImplicit(const float* u, const float* v, const float
                                      uint16_t laneMask, float out[4][kBatchLanes]) const {
   // samplePrepared's order: a plan with the batch kernel has no `single` and takes λ
   // from derivatives without mip blending, so the kernel comes first.
-  if (const auto* p = static_cast<const PreparedPlan*>(plan_.get())) {
-    if (p->uniform && p->uniform(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out))
-      return;
-    sampleImplicitRest(p, u, v, w, laneMask, out);
+  if (implicit_.fn) {
+    implicit_.fn(implicit_.context, u ? u : kZeros, v ? v : kZeros, w, laneMask, out);
     return;
   }
   SampleRequest req;

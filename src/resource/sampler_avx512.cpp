@@ -179,10 +179,7 @@ inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& 
 inline v16f channel(v16u p, int shift) { return toFloat(v16i((p >> shift) & 255u)); }
 
 // b/255 for integer b in 0..255, correctly rounded (byteOver255 of sampler.cpp).
-inline v16f byteOver255(v16f b) {
-  const v16f q = b * kInv255;
-  return fmadd(fmadd(-q, splat(255.0f), b), splat(kInv255), q);
-}
+inline v16f byteOver255(v16f b) { return fmadd(b, splat(kInv255Hi), b * kInv255Lo); }
 
 // Row lerp in 16-bit lanes, two channels per 32-bit lane (rowLerp of sampler.cpp).
 inline v32h rowLerp(v16u t0, v16u t1, v32h wx) {
@@ -198,8 +195,7 @@ inline v16f columnLerp(v32h top, v32h bottom, v16f wy) {
   const v16f t = toFloat(v16i((v16u(top) >> Shift) & mask));
   const v16f b = toFloat(v16i((v16u(bottom) >> Shift) & mask));
   const v16f x = fmadd(b - t, wy, t);
-  const v16f q = x * kInv65280;
-  return fmadd(fmadd(-q, splat(65280.0f), x), splat(kInv65280), q);
+  return fmadd(x, splat(kInv65280Hi), x * kInv65280Lo);
 }
 
 // Lanes outside `mask` store 0 (clearLanes of sampler.cpp), or with Merge keep what
@@ -212,9 +208,11 @@ inline void store(float* p, v16f v, __mmask16 mask) {
     _mm512_storeu_ps(p, _mm512_maskz_mov_ps(mask, __m512(v)));
 }
 
+// Out of line: its callers reach it by a jump, and the batch classification in front of
+// it keeps a frame without stack realignment (this one's 64-byte index buffers).
 template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false>
-inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mmask16 mask,
-                     float out[4][kLanes]) {
+[[gnu::noinline]] void filter16(const SampleLevel& lv, const float* u, const float* v,
+                                __mmask16 mask, float out[4][kLanes]) {
   const int w = lv.width, h = lv.height;
   float loU, hiU, loV, hiV;
   positionRange(AU, w, loU, hiU);
@@ -245,12 +243,15 @@ inline void filter16(const SampleLevel& lv, const float* u, const float* v, __mm
       }
     }
     const v16u m = v16u{} + 0x00ff00ffu;
-    const v16u wx = v16u(fixedX) & 255u;
-    const v32h wx2 = v32h(wx | (wx << 16));
+    // The weight (low byte of fixedX) in both 16-bit halves of each lane, by one vpshufb.
+    const __m512i weightBytes = _mm512_set4_epi32(0xff0cff0c, 0xff08ff08, 0xff04ff04, 0xff00ff00);
+    const v32h wx2 = v32h(_mm512_shuffle_epi8(__m512i(fixedX), weightBytes));
+    // (p >> 8) & 0x00ff00ff is the 16-bit halves shifted right by 8 (one vpsrlw).
+    const auto highBytes = [](v16u p) { return v16u(v32h(p) >> 8); };
     const v32h topRB = rowLerp(p00 & m, p10 & m, wx2);
-    const v32h topGA = rowLerp((p00 >> 8) & m, (p10 >> 8) & m, wx2);
+    const v32h topGA = rowLerp(highBytes(p00), highBytes(p10), wx2);
     const v32h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
-    const v32h bottomGA = rowLerp((p01 >> 8) & m, (p11 >> 8) & m, wx2);
+    const v32h bottomGA = rowLerp(highBytes(p01), highBytes(p11), wx2);
     const v16f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
     store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
     store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
@@ -265,19 +266,24 @@ void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out
 }
 
 // A batch whose quads chose different levels or filters: each (level, filter) of the
-// four quads samples its quads' lanes, `k` holding (level << 1) | linear of each quad in
-// its four lanes.
+// four quads samples its quads' lanes, `k` holding (level << 1) | linear of quad q in
+// its lane q.
 // Every lane belongs to one quad, so every lane in `mask` is written once; the others
 // read 0. Lanes are independent in the kernel, so this is what a batch of one key gives
-// on those lanes. False (nothing written) when a level is not for the kernels.
-template <TextureAddress AU, TextureAddress AV>
+// on those lanes. False (nothing written) when a level is not for the kernels, after
+// plan.rest with Rest.
+template <TextureAddress AU, TextureAddress AV, bool Rest>
 [[gnu::noinline]] bool mixedLevels16(const UniformPlan& plan, const float* u, const float* v,
-                                     uint32_t mask, __m512i k, float out[4][kLanes]) {
-  alignas(64) int lanes[16];  // here, not in the caller: its frame stays unaligned
-  _mm512_store_si512(lanes, k);
-  const int keys[4] = {lanes[0], lanes[4], lanes[8], lanes[12]};
-  for (int q = 0; q < 4; ++q)
-    if (!plan.levels[keys[q] >> 1]) return false;
+                                     const float* w, uint32_t mask, __m128i k,
+                                     float out[4][kLanes]) {
+  int keys[4];
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(keys), k);
+  for (int q = 0; q < 4; ++q) {
+    if (!plan.levels[keys[q] >> 1]) {
+      if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
+      return false;
+    }
+  }
   for (int ch = 0; ch < 4; ++ch) _mm512_storeu_ps(out[ch], _mm512_setzero_ps());
   uint32_t done = 0;  // quads sampled
   for (int q = 0; q < 4; ++q) {
@@ -295,48 +301,82 @@ template <TextureAddress AU, TextureAddress AV>
 }
 
 // sample2DUniform's classification of the four quads at once (see there): ρ² of each
-// quad with the same operations in the same order, in all four lanes of its 128-bit
-// block; the exponent gives λ's side of 0 and the nearest level when the mantissa keeps
-// log2 away from an integer.
-template <TextureAddress AU, TextureAddress AV>
-bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t mask,
-               float out[4][kLanes]) {
-  v16f x, y;
-  std::memcpy(&x, u, sizeof x);
-  std::memcpy(&y, v, sizeof y);
-  // Lane 0 of each block is the quad's top-left: tr - tl and bl - tl in lanes 1 and 2.
-  const v16f du = (x - v16f(_mm512_shuffle_ps(__m512(x), __m512(x), 0x00))) * splat(plan.size[0]);
-  const v16f dv = (y - v16f(_mm512_shuffle_ps(__m512(y), __m512(y), 0x00))) * splat(plan.size[1]);
-  const v16f sq = du * du + dv * dv;
-  const v16f la = v16f(_mm512_shuffle_ps(__m512(sq), __m512(sq), 0x55));
-  const v16f lb = v16f(_mm512_shuffle_ps(__m512(sq), __m512(sq), 0xaa));
-  const v16f ms = la < lb ? lb : la;  // std::max(la, lb)
+// quad with the same operations in the same order, one lane per quad; the exponent
+// gives λ's side of 0 and the nearest level when the mantissa keeps log2 away from an
+// integer. With Rest, a batch it declines goes on to plan.rest, as a tail call (the
+// common path then calls nothing and keeps nothing across a call).
+template <TextureAddress AU, TextureAddress AV, bool Rest>
+[[gnu::always_inline]] inline bool uniformBatch16(const UniformPlan& plan, const float* u,
+                                                  const float* v, const float* w,
+                                                  uint32_t mask, float out[4][kLanes]) {
+  const auto decline = [&] {
+    if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
+    return false;
+  };
+  typedef float v4f __attribute__((vector_size(16)));
+  typedef int v4i __attribute__((vector_size(16)));
+  typedef uint32_t v4u __attribute__((vector_size(16)));
+  const __m512 x = _mm512_loadu_ps(u), y = _mm512_loadu_ps(v);
+  // Quad q's lanes tl, tr, bl are 4q, 4q + 1, 4q + 2: the differences of the quads' u
+  // and v as one register, (tr - tl of quads 0..3, bl - tl of quads 0..3) for u, then
+  // for v, scaled by the level-0 size; the rest works on one value per quad.
+  const __m512i far = _mm512_setr_epi32(1, 5, 9, 13, 2, 6, 10, 14, 17, 21, 25, 29, 18, 22, 26, 30);
+  const __m512i near = _mm512_setr_epi32(0, 4, 8, 12, 0, 4, 8, 12, 16, 20, 24, 28, 16, 20, 24, 28);
+  const v16f size = v16f(_mm512_mask_broadcastss_ps(_mm512_set1_ps(plan.size[0]), 0xff00,
+                                                    _mm_set_ss(plan.size[1])));
+  const v16f d = (v16f(_mm512_permutex2var_ps(x, far, y)) - v16f(_mm512_permutex2var_ps(x, near, y))) * size;
+  const v16f d2 = d * d;
+  // du·du + dv·dv for the vectors a (tr - tl) and b (bl - tl) of each quad.
+  typedef float v8f __attribute__((vector_size(32)));
+  const v8f sq = v8f(_mm512_castps512_ps256(__m512(d2))) + v8f(_mm512_extractf32x8_ps(__m512(d2), 1));
+  const v4f la = v4f(_mm256_castps256_ps128(__m256(sq))), lb = v4f(_mm256_extractf128_ps(__m256(sq), 1));
+  const v4f ms = la < lb ? lb : la;  // std::max(la, lb)
   // Normal, positive and finite, mantissa in [0x1000, 0x7ff000): as two unsigned
   // range checks, independent of each other.
-  const v16i bits = v16i(ms), mant = bits & 0x7fffff;
-  const __mmask16 normal = _mm512_cmplt_epu32_mask(__m512i(bits - 0x00800000),
-                                                   _mm512_set1_epi32(0x7f000000));
-  const __mmask16 inside = _mm512_cmplt_epu32_mask(__m512i(mant - 0x1000),
-                                                   _mm512_set1_epi32(0x7ff000 - 0x1000));
-  if (__mmask16(normal & inside) != 0xffff) return false;
-  const v16i e = v16i(v16u(bits) >> 23) - 127;
-  const v16i linear = e >= 0 ? v16i{} + plan.minLinear : v16i{} + plan.magLinear;
-  v16i level = (e + 1) >> 1;
-  level = level < plan.first ? v16i{} + plan.first : level;
-  level = level > plan.last ? v16i{} + plan.last : level;
-  if (plan.mipNone) level = v16i{};
-  const v16i k = (level << 1) | linear;
-  const int key = _mm_cvtsi128_si32(_mm512_castsi512_si128(__m512i(k)));
-  if (_mm512_cmpeq_epi32_mask(__m512i(k), _mm512_set1_epi32(key)) != 0xffff) {
-    return mixedLevels16<AU, AV>(plan, u, v, mask, __m512i(k), out);
+  const v4i bits = v4i(ms), mant = bits & 0x7fffff;
+  const __mmask8 normal = _mm_cmplt_epu32_mask(__m128i(bits - 0x00800000), _mm_set1_epi32(0x7f000000));
+  const __mmask8 inside = _mm_cmplt_epu32_mask(__m128i(mant - 0x1000), _mm_set1_epi32(0x7ff000 - 0x1000));
+  if (__mmask8(normal & inside) != 0xf) return decline();
+  const v4i e = v4i(v4u(bits) >> 23) - 127;
+  const v4i linear = e >= 0 ? v4i{} + plan.minLinear : v4i{} + plan.magLinear;
+  v4i level = (e + 1) >> 1;
+  level = level < plan.first ? v4i{} + plan.first : level;
+  level = level > plan.last ? v4i{} + plan.last : level;
+  if (plan.mipNone) level = v4i{};
+  const v4i k = (level << 1) | linear;  // per quad
+  const int key = k[0];
+  if (_mm_cmpeq_epi32_mask(__m128i(k), _mm_set1_epi32(key)) != 0xf) {
+    return mixedLevels16<AU, AV, Rest>(plan, u, v, w, mask, __m128i(k), out);
   }
-  const SampleLevel* lv = plan.levels[key >> 1];
-  if (!lv) return false;
+  const SampleLevel* lv = levelByCount(plan.levels, key >> 1);  // 0 <= key >> 1 <= last
+  if (!lv) return decline();
   if (key & 1)
     filter16<AU, AV, true>(*lv, u, v, __mmask16(mask), out);
   else
     filter16<AU, AV, false>(*lv, u, v, __mmask16(mask), out);
   return true;
+}
+
+template <TextureAddress AU, TextureAddress AV>
+bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t mask,
+               float out[4][kLanes]) {
+  return uniformBatch16<AU, AV, false>(plan, u, v, nullptr, mask, out);
+}
+
+template <TextureAddress AU, TextureAddress AV>
+void implicit16(const void* context, const float* u, const float* v, const float* w,
+                uint16_t laneMask, float (*out)[kLanes]) {
+  uniformBatch16<AU, AV, true>(*static_cast<const UniformPlan*>(context), u, v, w, laneMask, out);
+}
+
+template <TextureAddress AU>
+Implicit2D implicitForV(TextureAddress av) {
+  switch (av) {
+    case TextureAddress::Wrap: return implicit16<AU, TextureAddress::Wrap>;
+    case TextureAddress::Mirror: return implicit16<AU, TextureAddress::Mirror>;
+    case TextureAddress::MirrorOnce: return implicit16<AU, TextureAddress::MirrorOnce>;
+    default: return implicit16<AU, TextureAddress::Clamp>;
+  }
 }
 
 template <TextureAddress AU>
@@ -372,6 +412,15 @@ Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av) {
     case TextureAddress::Mirror: return uniformForV<TextureAddress::Mirror>(av);
     case TextureAddress::MirrorOnce: return uniformForV<TextureAddress::MirrorOnce>(av);
     default: return uniformForV<TextureAddress::Clamp>(av);
+  }
+}
+
+Implicit2D selectImplicit2DAvx512(TextureAddress au, TextureAddress av) {
+  switch (au) {
+    case TextureAddress::Wrap: return implicitForV<TextureAddress::Wrap>(av);
+    case TextureAddress::Mirror: return implicitForV<TextureAddress::Mirror>(av);
+    case TextureAddress::MirrorOnce: return implicitForV<TextureAddress::MirrorOnce>(av);
+    default: return implicitForV<TextureAddress::Clamp>(av);
   }
 }
 

@@ -29,6 +29,10 @@ struct UniformPlan {
   int minLinear, magLinear;         // 1: LINEAR
   bool mipNone;                     // MIPFILTER NONE: level 0
   const SampleLevel* const* levels;  // per level, nullptr: not for the kernels
+  // What PreparedSampler::sampleImplicit does past the kernel, given `owner`.
+  void (*rest)(const void* owner, const float* u, const float* v, const float* w,
+               uint16_t laneMask, float (*out)[kBatchLanes]);
+  const void* owner;
 };
 
 // Samples the batch when every quad's ρ² has the form that gives its level and filter
@@ -37,6 +41,12 @@ struct UniformPlan {
 using Uniform2D = bool (*)(const UniformPlan&, const float* u, const float* v, uint32_t mask,
                            float out[4][kBatchLanes]);
 Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av);
+
+// The Uniform2D kernel, and plan.rest(plan.owner, ...) where it declines: the whole of
+// sampleImplicit for a prepared plan (PreparedSampler::ImplicitKernel, context: the plan).
+using Implicit2D = void (*)(const void* plan, const float* u, const float* v, const float* w,
+                            uint16_t laneMask, float (*out)[kBatchLanes]);
+Implicit2D selectImplicit2DAvx512(TextureAddress au, TextureAddress av);
 
 namespace kernels {
 
@@ -49,10 +59,14 @@ constexpr float kWeightUnit = 1.0f / kWeightScale;
 // float has no fraction left, and it keeps every later step in int range.
 constexpr float kCoordLimit = 4194304.0f;
 
-// x / 65280 and b / 255 are formed as a product with the reciprocal and one fma
-// correction step (see columnLerp and byteOver255).
-constexpr float kInv65280 = 1.0f / 65280.0f;
-constexpr float kInv255 = 1.0f / 255.0f;
+// x / 65280 and b / 255 without a division: the reciprocal as an unevaluated sum of two
+// floats, hi + lo, and fma(x, hi, x·lo), which is the correctly rounded quotient for
+// every value the kernels divide (x = S/256, S in [0, 255·65536]; b in 0..255):
+// tests/resource/test_filter_quotient.cpp checks all of them.
+constexpr float kInv65280Hi = float(1.0 / 65280.0);
+constexpr float kInv65280Lo = float(1.0 / 65280.0 - double(kInv65280Hi));
+constexpr float kInv255Hi = float(1.0 / 255.0);
+constexpr float kInv255Lo = float(1.0 / 255.0 - double(kInv255Hi));
 
 // Texel-space positions are clamped to [lo, hi] before conversion to int. It never
 // changes the texels of a finite coordinate and keeps indices small. (static: each
@@ -65,6 +79,21 @@ static inline void positionRange(TextureAddress a, int n, float& lo, float& hi) 
   } else {
     lo = -float(n + 2), hi = float(n + 2);
   }
+}
+
+// levels[index] (index >= 0), reached by counting up to it rather than by indexing: the
+// level's size and texels then depend on predicted branches (a draw's batches mostly
+// share a level), not on the LOD classification that computed `index`, so a kernel's
+// long dependency chain starts on the coordinates while the classification is still
+// being computed.
+static inline const SampleLevel* levelByCount(const SampleLevel* const* levels, int index) {
+  int counted = 0;
+  while (counted != index) {
+    ++counted;
+    asm("" : "+r"(counted));  // a count the compiler cannot replace by index
+  }
+  asm("" : "+r"(counted));
+  return levels[counted];
 }
 
 }  // namespace kernels

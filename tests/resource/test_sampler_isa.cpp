@@ -199,5 +199,180 @@ TEST(SamplerIsaVariants, BatchesMixingLevelsMatchTheReference) {
   EXPECT_GT(mixedBatches, 2000);
 }
 
+// Batches whose four quads share one level, for every level of a 64x64 texture (and
+// beyond its last, clamped): the batch kernels find the level by counting up to it, so
+// each level is checked against the reference on its own, in both variants, through
+// sampleImplicit and through the ImplicitKernel entry. t texels per pixel as in
+// BatchesMixingLevelsMatchTheReference (level round(log2 t), clamped to [0, 6]).
+TEST(SamplerIsaVariants, BatchesOfOneLevelMatchTheReferenceOnEveryLevel) {
+  const auto tex = randomTexture(64, 64, 0, 23);
+  ASSERT_EQ(tex->levelCount(), 7);
+  std::mt19937 rng(57);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float texelsPerPixel[] = {0.6f, 1.2f, 2.4f, 4.8f, 9.6f, 19.2f, 38.4f, 76.8f, 153.6f};
+  const CpuIsa previous = activeIsa();
+  const bool avx512 = detectedIsa() == CpuIsa::Avx512;
+  int throughKernel = 0;
+  for (int iter = 0; iter < 900; ++iter) {
+    SamplerState s;
+    s.addressU = kModes[rng() % 4], s.addressV = kModes[rng() % 4];
+    s.magFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+    s.minFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+    s.mipFilter = TextureFilter::Point;
+    const float step = texelsPerPixel[iter % 9] / 64.0f;
+    alignas(64) float u[N], v[N];
+    for (int q = 0; q < 4; ++q) {
+      const float u0 = unit(rng) * 4 - 2, v0 = unit(rng) * 4 - 2;
+      for (int k = 0; k < 4; ++k)
+        u[4 * q + k] = u0 + step * float(k & 1), v[4 * q + k] = v0 + step * float(k >> 1);
+    }
+    const uint16_t mask = iter % 5 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+    SampleRequest req;
+    req.u = u, req.v = v, req.laneMask = mask;
+    float expected[4][N];
+    sampleTextureReference(*tex, s, req, expected);
+    for (CpuIsa isa : {CpuIsa::Avx2, CpuIsa::Avx512}) {
+      if (isa == CpuIsa::Avx512 && !avx512) continue;
+      setActiveIsa(isa);
+      const PreparedSampler prepared(*tex, s);
+      float a[4][N], b[4][N];
+      prepared.sampleImplicit(u, v, nullptr, mask, a);
+      ASSERT_EQ(std::memcmp(expected, a, sizeof a), 0) << "iter " << iter << " isa " << int(isa);
+      if (const auto& kernel = prepared.implicitKernel(); kernel.fn) {
+        kernel.fn(kernel.context, u, v, nullptr, mask, b);
+        ASSERT_EQ(std::memcmp(expected, b, sizeof b), 0) << "iter " << iter << " isa " << int(isa);
+        ++throughKernel;
+      }
+    }
+  }
+  setActiveIsa(previous);
+  EXPECT_EQ(throughKernel, avx512 ? 1800 : 900);
+}
+
+// PreparedSampler::implicitKernel: there for every 2D texture without anisotropic
+// filtering, in both variants; it gives what the reference gives for every kind of
+// coordinates, lane mask and state (mip filters, LOD bias), the batches the AVX-512
+// batch kernel declines included. Cube and volume textures and MAXANISOTROPY > 1 take
+// the general path and get none.
+TEST(SamplerIsaVariants, ImplicitKernelMatchesTheReference) {
+  const CpuIsa previous = activeIsa();
+  const bool avx512 = detectedIsa() == CpuIsa::Avx512;
+  std::mt19937 rng(91);
+  const int sizes[][2] = {{1, 1}, {2, 2}, {17, 5}, {64, 64}};
+  int withKernel = 0, withoutKernel = 0;
+  for (const auto& size : sizes) {
+    const auto tex = randomTexture(size[0], size[1], 0, uint32_t(size[0] + 7 * size[1]));
+    for (int iter = 0; iter < 400; ++iter) {
+      SamplerState s;
+      s.addressU = kModes[rng() % 4], s.addressV = kModes[rng() % 4];
+      s.magFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+      s.minFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+      s.mipFilter = TextureFilter(rng() % 3);  // NONE, POINT, LINEAR
+      s.mipLodBias = iter % 7 == 3 ? 0.25f : 0.0f;
+      const bool anisotropic = iter % 11 == 5;
+      if (anisotropic) s.minFilter = TextureFilter::Anisotropic, s.maxAnisotropy = 4;
+      setActiveIsa(iter % 9 == 4 || !avx512 ? CpuIsa::Avx2 : CpuIsa::Avx512);
+      const PreparedSampler prepared(*tex, s);
+      const auto& kernel = prepared.implicitKernel();
+      ASSERT_EQ(kernel.fn != nullptr, !anisotropic) << "iter " << iter;
+      if (!kernel.fn) {
+        ++withoutKernel;
+        continue;
+      }
+      alignas(64) float u[N], v[N];
+      fillCoords(rng, iter % 4, size[0], size[1], u, v);
+      const uint16_t mask = iter % 3 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+      SampleRequest req;
+      req.u = u, req.v = v, req.laneMask = mask;
+      float expected[4][N], got[4][N];
+      sampleTextureReference(*tex, s, req, expected);
+      kernel.fn(kernel.context, u, v, nullptr, mask, got);
+      ASSERT_EQ(std::memcmp(expected, got, sizeof got), 0)
+          << size[0] << "x" << size[1] << " iter " << iter;
+      ++withKernel;
+    }
+  }
+  setActiveIsa(previous);
+  EXPECT_GT(withKernel, 1200);
+  EXPECT_GT(withoutKernel, 100);
+  // A cube map has no one-level 2D path.
+  const auto cube = Texture::createCube(Format::A8R8G8B8, 8, 1);
+  EXPECT_EQ(PreparedSampler(*cube, SamplerState{}).implicitKernel().fn, nullptr);
+}
+
+// Screen-like batches (4x4 pixels in quad order, 0.5, 1 or 1.33 texels per pixel, the
+// common case of the batch kernels, whose 2x2 texels are adjacent in memory) at every
+// half-texel offset around and across the edges of small levels (widths and heights
+// 1, 2, 4, 8, 16, 17), every addressing pair, both filters and several lane masks: the
+// kernels of both variants and the prepared paths agree with the reference bit for bit,
+// where the footprints wrap, mirror or clamp and where they do not.
+TEST(SamplerIsaVariants, ScreenFootprintsAroundLevelEdgesMatchTheReference) {
+  const bool avx512 = detectedIsa() == CpuIsa::Avx512;
+  const CpuIsa previous = activeIsa();
+  const int sides[] = {1, 2, 4, 8, 16, 17};
+  const float steps[] = {0.5f, 1.0f, 1.33f};
+  const uint16_t masks[] = {0xffff, 0x0ff0, 0x8001, 0x0000};
+  std::mt19937 rng(3);
+  long compared = 0;
+  for (int w : sides)
+    for (int h : sides) {
+      if ((w + h) % 3 == 1) continue;  // a spread of the 36 shapes keeps the test short
+      const auto tex = randomTexture(w, h, 1, uint32_t(w * 100 + h));
+      const SampleLevel& lv = tex->sampleLevel(0, 0);
+      for (TextureAddress au : kModes)
+        for (TextureAddress av : kModes)
+          for (bool linear : {false, true}) {
+            SamplerState s;
+            s.addressU = au, s.addressV = av;
+            s.magFilter = s.minFilter = linear ? TextureFilter::Linear : TextureFilter::Point;
+            const Kernel2D kernels[2] = {
+                selectKernel2D(au, av, linear, CpuIsa::Avx2),
+                avx512 ? selectKernel2D(au, av, linear, CpuIsa::Avx512) : nullptr};
+            for (int ox = -6; ox <= 2 * w + 4; ox += 1 + w / 8)
+              for (int oy = -6; oy <= 2 * h + 4; oy += 1 + h / 8) {
+                const float step = steps[(ox + oy + 12) % 3];
+                alignas(64) float u[N], v[N];
+                for (int l = 0; l < N; ++l) {
+                  const int q = l >> 2, px = (q & 1) * 2 + (l & 1), py = (q >> 1) * 2 + (l >> 1 & 1);
+                  u[l] = (0.5f * float(ox) + step * float(px)) / float(w);
+                  v[l] = (0.5f * float(oy) + step * float(py)) / float(h);
+                }
+                const uint16_t mask = masks[rng() % 4];
+                SampleRequest req;
+                req.u = u, req.v = v;
+                float whole[4][N], ref[4][N], got[4][N];
+                sampleTextureReference(*tex, s, req, whole);
+                req.laneMask = mask;
+                sampleTextureReference(*tex, s, req, ref);
+                for (const Kernel2D kernel : kernels) {
+                  if (!kernel) continue;
+                  kernel(lv, u, v, got);
+                  ASSERT_EQ(std::memcmp(whole, got, sizeof got), 0)
+                      << w << "x" << h << " " << int(au) << "/" << int(av) << " linear " << linear
+                      << " at " << ox << "," << oy << " step " << step;
+                }
+                // MIPFILTER NONE takes the one-kernel path, POINT (one level here, the
+                // same texels) the batch classification in front of the kernel.
+                for (CpuIsa isa : {CpuIsa::Avx2, CpuIsa::Avx512})
+                  for (TextureFilter mip : {TextureFilter::None, TextureFilter::Point}) {
+                    if (isa == CpuIsa::Avx512 && !avx512) continue;
+                    setActiveIsa(isa);
+                    SamplerState sm = s;
+                    sm.mipFilter = mip;
+                    const PreparedSampler prepared(*tex, sm);
+                    prepared.sampleImplicit(u, v, nullptr, mask, got);
+                    ASSERT_EQ(std::memcmp(ref, got, sizeof got), 0)
+                        << w << "x" << h << " " << int(au) << "/" << int(av) << " linear "
+                        << linear << " at " << ox << "," << oy << " mask " << mask << " isa "
+                        << int(isa) << " mip " << int(mip);
+                  }
+                ++compared;
+              }
+          }
+    }
+  setActiveIsa(previous);
+  EXPECT_GT(compared, 20000);
+}
+
 }  // namespace
 }  // namespace refx

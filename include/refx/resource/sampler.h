@@ -75,10 +75,24 @@ class PreparedSampler {
   // written (no such kernel for this texture, state or batch).
   bool sampleImplicitArgb8(const float* u, const float* v, uint16_t laneMask, uint32_t out[kBatchLanes]) const;
 
+  // sampleImplicit as one function and its context, where the texture and state have
+  // the one-level 2D paths (fn null otherwise: ANISOTROPIC, cube and volume textures):
+  // fn(context, u, v, w, laneMask, out), u and v not null, gives what sampleImplicit
+  // gives. Callers that sample through a function pointer reach the batch kernel (the
+  // AVX-512 one where the state allows it) with no call in between. The context is
+  // shared by copies of this PreparedSampler and lives as long as the last of them.
+  struct ImplicitKernel {
+    void (*fn)(const void* context, const float* u, const float* v, const float* w,
+               uint16_t laneMask, float (*out)[kBatchLanes]) = nullptr;
+    const void* context = nullptr;
+  };
+  const ImplicitKernel& implicitKernel() const { return implicit_; }
+
  private:
   const Texture* tex_;
   SamplerState state_;
   std::shared_ptr<const void> plan_;  // one-level 2D plan when the state allows it
+  ImplicitKernel implicit_;
 };
 
 // Cube face selection: face index (D3DCUBEMAP_FACES) and (u,v) in [0,1] on that face.
