@@ -1368,6 +1368,7 @@ struct PreparedPlan {
   // with sampleImplicit's other paths behind it (context: uniformPlan).
   resource::Uniform2D uniform = nullptr;
   resource::Implicit2D implicit = nullptr;
+  resource::UniformColors2D uniformColors = nullptr;  // `uniform` as 8-bit unorm D3DCOLORs
   resource::UniformPlan uniformPlan{};
 
   PreparedPlan(const Texture& tex, const SamplerState& state, const TextureAddress addr[3])
@@ -1387,6 +1388,7 @@ struct PreparedPlan {
         activeIsa() == CpuIsa::Avx512) {
       uniform = resource::selectUniform2DAvx512(addr[0], addr[1]);
       implicit = resource::selectImplicit2DAvx512(addr[0], addr[1]);
+      uniformColors = resource::selectUniformColors2DAvx512(addr[0], addr[1]);
       uniformPlan = {{fast.size[0], fast.size[1]}, fast.first, fast.last, fast.minLinear,
                      fast.magLinear, fast.mipNone, levels.data(), sampleImplicitRest, this};
     }
@@ -1471,8 +1473,8 @@ void PreparedSampler::sampleImplicit(const float* u, const float* v, const float
 
 bool PreparedSampler::sampleImplicitArgb8(const float* u, const float* v, uint16_t laneMask,
                                           uint32_t out[kBatchLanes]) const {
-  (void)u, (void)v, (void)laneMask, (void)out;
-  return false;
+  const auto* p = static_cast<const PreparedPlan*>(plan_.get());
+  return p && p->uniformColors && p->uniformColors(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out);
 }
 
 Kernel2D resource::selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa) {

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "resource/sampler_kernels.h"
 
@@ -208,11 +209,43 @@ inline void store(float* p, v16f v, __mmask16 mask) {
     _mm512_storeu_ps(p, _mm512_maskz_mov_ps(mask, __m512(v)));
 }
 
+// The D3DCOLORs of a batch (Argb8 output) stored as `store` stores a channel.
+template <bool Merge>
+inline void storeColors(uint32_t* p, v16u v, __mmask16 mask) {
+  if constexpr (Merge)
+    _mm512_mask_storeu_epi32(p, mask, __m512i(v));
+  else
+    _mm512_storeu_si512(p, _mm512_maskz_mov_epi32(mask, __m512i(v)));
+}
+
+// A texel's bytes r, g, b, a (memory order) as the D3DCOLOR a << 24 | r << 16 | g << 8 | b.
+inline v16u texelColors(v16u p) {
+  const __m512i order = _mm512_set4_epi32(0x0f0c0d0e, 0x0b08090a, 0x07040506, 0x03000102);
+  return v16u(_mm512_shuffle_epi8(__m512i(p), order));
+}
+
+// The 8-bit unorm of one bilinear channel (Argb8 output): columnLerp's x = top +
+// (bottom - top)·wy is S/256 exactly (S the filter sum, below 2^24), the float result
+// S/65280/256 correctly rounded, and its unorm8 (round(v·255)) is floor(S/65536 + 1/2)
+// for every S (checked exhaustively in tests/resource/test_filter_quotient.cpp):
+// x/256 + 1/2 is exact in float (24 bits), truncated to an integer.
+template <int Shift>
+inline v16i columnByte(v32h top, v32h bottom, v16f wy) {
+  const v16u mask = v16u{} + (Shift ? 0xffffffffu : 0xffffu);
+  const v16f t = toFloat(v16i((v16u(top) >> Shift) & mask));
+  const v16f b = toFloat(v16i((v16u(bottom) >> Shift) & mask));
+  const v16f x = fmadd(b - t, wy, t);
+  return v16i(_mm512_cvttps_epi32(__m512(fmadd(x, splat(1.0f / 256.0f), splat(0.5f)))));
+}
+
 // Out of line: its callers reach it by a jump, and the batch classification in front of
 // it keeps a frame without stack realignment (this one's 64-byte index buffers).
-template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false>
+// Out: float (*)[kLanes] (the channels as the shader sees them) or uint32_t* (their
+// 8-bit unorms as D3DCOLORs, PreparedSampler::sampleImplicitArgb8).
+template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false, class Out = float (*)[kLanes]>
 [[gnu::noinline]] void filter16(const SampleLevel& lv, const float* u, const float* v,
-                                __mmask16 mask, float out[4][kLanes]) {
+                                __mmask16 mask, Out out) {
+  constexpr bool colors = std::is_same_v<Out, uint32_t*>;
   const int w = lv.width, h = lv.height;
   float loU, hiU, loV, hiV;
   positionRange(AU, w, loU, hiU);
@@ -224,7 +257,10 @@ template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false>
   const v16i r0 = y0 * w;
   if constexpr (!Linear) {
     const v16u p = load16(texels, r0 + x0);
-    for (int ch = 0; ch < 4; ++ch) store<Merge>(out[ch], byteOver255(channel(p, 8 * ch)), mask);
+    if constexpr (colors)
+      storeColors<Merge>(out, texelColors(p), mask);  // unorm8(b/255) = b
+    else
+      for (int ch = 0; ch < 4; ++ch) store<Merge>(out[ch], byteOver255(channel(p, 8 * ch)), mask);
   } else {
     v16u p00, p10, p01, p11;
     const bool pairs = allDiffer(x0, x1, 1);
@@ -253,10 +289,16 @@ template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false>
     const v32h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
     const v32h bottomGA = rowLerp(highBytes(p01), highBytes(p11), wx2);
     const v16f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
-    store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
-    store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
-    store<Merge>(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
-    store<Merge>(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
+    if constexpr (colors) {
+      const v16i r = columnByte<0>(topRB, bottomRB, fy), g = columnByte<0>(topGA, bottomGA, fy);
+      const v16i b = columnByte<16>(topRB, bottomRB, fy), a = columnByte<16>(topGA, bottomGA, fy);
+      storeColors<Merge>(out, v16u((a << 24) | (r << 16) | (g << 8) | b), mask);
+    } else {
+      store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
+      store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
+      store<Merge>(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
+      store<Merge>(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
+    }
   }
 }
 
@@ -271,11 +313,10 @@ void kernel2D16(const SampleLevel& lv, const float* u, const float* v, float out
 // Every lane belongs to one quad, so every lane in `mask` is written once; the others
 // read 0. Lanes are independent in the kernel, so this is what a batch of one key gives
 // on those lanes. False (nothing written) when a level is not for the kernels, after
-// plan.rest with Rest.
-template <TextureAddress AU, TextureAddress AV, bool Rest>
+// plan.rest with Rest (float output only).
+template <TextureAddress AU, TextureAddress AV, bool Rest, class Out = float (*)[kLanes]>
 [[gnu::noinline]] bool mixedLevels16(const UniformPlan& plan, const float* u, const float* v,
-                                     const float* w, uint32_t mask, __m128i k,
-                                     float out[4][kLanes]) {
+                                     const float* w, uint32_t mask, __m128i k, Out out) {
   int keys[4];
   _mm_storeu_si128(reinterpret_cast<__m128i*>(keys), k);
   for (int q = 0; q < 4; ++q) {
@@ -284,7 +325,10 @@ template <TextureAddress AU, TextureAddress AV, bool Rest>
       return false;
     }
   }
-  for (int ch = 0; ch < 4; ++ch) _mm512_storeu_ps(out[ch], _mm512_setzero_ps());
+  if constexpr (std::is_same_v<Out, uint32_t*>)
+    _mm512_storeu_si512(out, _mm512_setzero_si512());
+  else
+    for (int ch = 0; ch < 4; ++ch) _mm512_storeu_ps(out[ch], _mm512_setzero_ps());
   uint32_t done = 0;  // quads sampled
   for (int q = 0; q < 4; ++q) {
     if (done >> q & 1) continue;
@@ -293,9 +337,9 @@ template <TextureAddress AU, TextureAddress AV, bool Rest>
       if (keys[r] == keys[q]) done |= 1u << r, lanes |= 0xfu << (4 * r);
     const SampleLevel& lv = *plan.levels[keys[q] >> 1];
     if (keys[q] & 1)
-      filter16<AU, AV, true, true>(lv, u, v, __mmask16(lanes & mask), out);
+      filter16<AU, AV, true, true, Out>(lv, u, v, __mmask16(lanes & mask), out);
     else
-      filter16<AU, AV, false, true>(lv, u, v, __mmask16(lanes & mask), out);
+      filter16<AU, AV, false, true, Out>(lv, u, v, __mmask16(lanes & mask), out);
   }
   return true;
 }
@@ -304,11 +348,11 @@ template <TextureAddress AU, TextureAddress AV, bool Rest>
 // quad with the same operations in the same order, one lane per quad; the exponent
 // gives λ's side of 0 and the nearest level when the mantissa keeps log2 away from an
 // integer. With Rest, a batch it declines goes on to plan.rest, as a tail call (the
-// common path then calls nothing and keeps nothing across a call).
-template <TextureAddress AU, TextureAddress AV, bool Rest>
+// common path then calls nothing and keeps nothing across a call). Out as filter16's.
+template <TextureAddress AU, TextureAddress AV, bool Rest, class Out = float (*)[kLanes]>
 [[gnu::always_inline]] inline bool uniformBatch16(const UniformPlan& plan, const float* u,
                                                   const float* v, const float* w,
-                                                  uint32_t mask, float out[4][kLanes]) {
+                                                  uint32_t mask, Out out) {
   const auto decline = [&] {
     if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
     return false;
@@ -346,14 +390,14 @@ template <TextureAddress AU, TextureAddress AV, bool Rest>
   const v4i k = (level << 1) | linear;  // per quad
   const int key = k[0];
   if (_mm_cmpeq_epi32_mask(__m128i(k), _mm_set1_epi32(key)) != 0xf) {
-    return mixedLevels16<AU, AV, Rest>(plan, u, v, w, mask, __m128i(k), out);
+    return mixedLevels16<AU, AV, Rest, Out>(plan, u, v, w, mask, __m128i(k), out);
   }
   const SampleLevel* lv = levelByCount(plan.levels, key >> 1);  // 0 <= key >> 1 <= last
   if (!lv) return decline();
   if (key & 1)
-    filter16<AU, AV, true>(*lv, u, v, __mmask16(mask), out);
+    filter16<AU, AV, true, false, Out>(*lv, u, v, __mmask16(mask), out);
   else
-    filter16<AU, AV, false>(*lv, u, v, __mmask16(mask), out);
+    filter16<AU, AV, false, false, Out>(*lv, u, v, __mmask16(mask), out);
   return true;
 }
 
@@ -361,6 +405,22 @@ template <TextureAddress AU, TextureAddress AV>
 bool uniform16(const UniformPlan& plan, const float* u, const float* v, uint32_t mask,
                float out[4][kLanes]) {
   return uniformBatch16<AU, AV, false>(plan, u, v, nullptr, mask, out);
+}
+
+template <TextureAddress AU, TextureAddress AV>
+bool uniformColors16(const UniformPlan& plan, const float* u, const float* v, uint32_t mask,
+                     uint32_t out[kLanes]) {
+  return uniformBatch16<AU, AV, false, uint32_t*>(plan, u, v, nullptr, mask, out);
+}
+
+template <TextureAddress AU>
+UniformColors2D uniformColorsForV(TextureAddress av) {
+  switch (av) {
+    case TextureAddress::Wrap: return uniformColors16<AU, TextureAddress::Wrap>;
+    case TextureAddress::Mirror: return uniformColors16<AU, TextureAddress::Mirror>;
+    case TextureAddress::MirrorOnce: return uniformColors16<AU, TextureAddress::MirrorOnce>;
+    default: return uniformColors16<AU, TextureAddress::Clamp>;
+  }
 }
 
 template <TextureAddress AU, TextureAddress AV>
@@ -412,6 +472,15 @@ Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av) {
     case TextureAddress::Mirror: return uniformForV<TextureAddress::Mirror>(av);
     case TextureAddress::MirrorOnce: return uniformForV<TextureAddress::MirrorOnce>(av);
     default: return uniformForV<TextureAddress::Clamp>(av);
+  }
+}
+
+UniformColors2D selectUniformColors2DAvx512(TextureAddress au, TextureAddress av) {
+  switch (au) {
+    case TextureAddress::Wrap: return uniformColorsForV<TextureAddress::Wrap>(av);
+    case TextureAddress::Mirror: return uniformColorsForV<TextureAddress::Mirror>(av);
+    case TextureAddress::MirrorOnce: return uniformColorsForV<TextureAddress::MirrorOnce>(av);
+    default: return uniformColorsForV<TextureAddress::Clamp>(av);
   }
 }
 

@@ -41,6 +41,12 @@ struct UniformPlan {
 using Uniform2D = bool (*)(const UniformPlan&, const float* u, const float* v, uint32_t mask,
                            float out[4][kBatchLanes]);
 Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av);
+// Uniform2D with the 8-bit unorms of the result as D3DCOLORs (a << 24 | r << 16 |
+// g << 8 | b), what PreparedSampler::sampleImplicitArgb8 gives; lanes outside `mask`
+// read 0. False: nothing written.
+using UniformColors2D = bool (*)(const UniformPlan&, const float* u, const float* v, uint32_t mask,
+                                 uint32_t out[kBatchLanes]);
+UniformColors2D selectUniformColors2DAvx512(TextureAddress au, TextureAddress av);
 
 // The Uniform2D kernel, and plan.rest(plan.owner, ...) where it declines: the whole of
 // sampleImplicit for a prepared plan (PreparedSampler::ImplicitKernel, context: the plan).

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "refx/core/color.h"
 #include "resource/sampler_kernels.h"
 
 using namespace refx::resource::kernels;
@@ -41,4 +42,21 @@ TEST(FilterQuotient, SplitReciprocalWithOneFmaEqualsDivisionForEveryByte) {
     const float want = b / 255.0f, got = std::fma(b, kInv255Hi, b * kInv255Lo);
     ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0) << "byte " << i;
   }
+}
+
+// The 8-bit output of the bilinear kernel (PreparedSampler::sampleImplicitArgb8) is
+// floor(x/256 + 1/2) for x = S/256, computed as one fma in float and truncated; it must
+// be the byte the output merger makes of the float result q = x/65280: unorm8(q) =
+// trunc(min(max(q, 0), 1)·255 + 0.5) (core/color.h), for every filter sum S. Both sides
+// stand for round(S/65536) with ties up (q·255 = S/65536).
+TEST(FilterQuotient, ByteOfTheFilterSumIsTheUnorm8OfItsQuotient) {
+  long mismatches = 0;
+  for (long s = 0; s <= 255L * 65536; ++s) {
+    const float x = float(s) / 256.0f;
+    const float q = std::fma(x, kInv65280Hi, x * kInv65280Lo);
+    const int viaFloat = int(std::fma(x, 1.0f / 256.0f, 0.5f));
+    const int want = int(refx::unorm8(q));
+    mismatches += viaFloat != want || int((s + 32768) >> 16) != want;
+  }
+  EXPECT_EQ(mismatches, 0);
 }

@@ -300,6 +300,50 @@ TEST(SamplerIsaVariants, ImplicitKernelMatchesTheReference) {
   EXPECT_EQ(PreparedSampler(*cube, SamplerState{}).implicitKernel().fn, nullptr);
 }
 
+// sampleImplicitArgb8 gives the 8-bit unorms of sampleImplicit's channels as D3DCOLORs
+// (unorm8 of core/color.h: what the output merger stores), on every lane in the mask,
+// wherever it samples at all (the AVX-512 batch kernel's states: mip filter NONE or
+// POINT, no LOD bias; batches of one level or of mixed levels).
+TEST(SamplerIsaVariants, ColorsAreTheUnorm8OfTheImplicitSample) {
+  const CpuIsa previous = activeIsa();
+  if (detectedIsa() != CpuIsa::Avx512) GTEST_SKIP() << "the byte output exists in the AVX-512 kernel only";
+  setActiveIsa(CpuIsa::Avx512);
+  std::mt19937 rng(5);
+  const int sizes[][2] = {{1, 1}, {3, 2}, {17, 5}, {64, 64}, {256, 128}};
+  int sampled = 0, declined = 0;
+  for (const auto& size : sizes) {
+    const auto tex = randomTexture(size[0], size[1], 0, uint32_t(size[0] * 3 + size[1]));
+    for (int iter = 0; iter < 600; ++iter) {
+      SamplerState s;
+      s.addressU = kModes[rng() % 4], s.addressV = kModes[rng() % 4];
+      s.magFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+      s.minFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+      s.mipFilter = TextureFilter(rng() % 3);  // NONE, POINT, LINEAR
+      const PreparedSampler prepared(*tex, s);
+      alignas(64) float u[N], v[N];
+      fillCoords(rng, iter % 4, size[0], size[1], u, v);
+      const uint16_t mask = iter % 3 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+      alignas(64) float rgba[4][N];
+      alignas(64) uint32_t colors[N];
+      prepared.sampleImplicit(u, v, nullptr, mask, rgba);
+      if (!prepared.sampleImplicitArgb8(u, v, mask, colors)) {
+        ++declined;
+        continue;
+      }
+      ++sampled;
+      for (int l = 0; l < N; ++l) {
+        if (!(mask >> l & 1)) continue;
+        const uint32_t want = uint32_t(unorm8(rgba[3][l])) << 24 | uint32_t(unorm8(rgba[0][l])) << 16 |
+                              uint32_t(unorm8(rgba[1][l])) << 8 | uint32_t(unorm8(rgba[2][l]));
+        ASSERT_EQ(colors[l], want) << size[0] << "x" << size[1] << " iter " << iter << " lane " << l;
+      }
+    }
+  }
+  setActiveIsa(previous);
+  EXPECT_GT(sampled, 800);   // the kernel's states, most batches
+  EXPECT_GT(declined, 800);  // mip LINEAR, declined batches
+}
+
 // Screen-like batches (4x4 pixels in quad order, 0.5, 1 or 1.33 texels per pixel, the
 // common case of the batch kernels, whose 2x2 texels are adjacent in memory) at every
 // half-texel offset around and across the edges of small levels (widths and heights
