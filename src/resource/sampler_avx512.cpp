@@ -188,14 +188,20 @@ inline v32h rowLerp(v16u t0, v16u t1, v32h wx) {
   return (a << 8) + (b - a) * wx;
 }
 
-// One channel from the low (shift 0) or high (shift 16) halves of two row results,
-// divided by 65280 (columnLerp of sampler.cpp).
+// x = top + (bottom - top)·wy of one channel from the low (shift 0) or high (shift 16)
+// halves of two row results: S/256 exactly, S the channel's filter sum.
 template <int Shift>
-inline v16f columnLerp(v32h top, v32h bottom, v16f wy) {
+inline v16f columnSum(v32h top, v32h bottom, v16f wy) {
   const v16u mask = v16u{} + (Shift ? 0xffffffffu : 0xffffu);
   const v16f t = toFloat(v16i((v16u(top) >> Shift) & mask));
   const v16f b = toFloat(v16i((v16u(bottom) >> Shift) & mask));
-  const v16f x = fmadd(b - t, wy, t);
+  return fmadd(b - t, wy, t);
+}
+
+// columnSum divided by 65280 (columnLerp of sampler.cpp).
+template <int Shift>
+inline v16f columnLerp(v32h top, v32h bottom, v16f wy) {
+  const v16f x = columnSum<Shift>(top, bottom, wy);
   return fmadd(x, splat(kInv65280Hi), x * kInv65280Lo);
 }
 
@@ -224,17 +230,14 @@ inline v16u texelColors(v16u p) {
   return v16u(_mm512_shuffle_epi8(__m512i(p), order));
 }
 
-// The 8-bit unorm of one bilinear channel (Argb8 output): columnLerp's x = top +
+// The 8-bit unorm of one bilinear channel (Argb8 output): columnSum's x = top +
 // (bottom - top)·wy is S/256 exactly (S the filter sum, below 2^24), the float result
 // S/65280/256 correctly rounded, and its unorm8 (round(v·255)) is floor(S/65536 + 1/2)
 // for every S (checked exhaustively in tests/resource/test_filter_quotient.cpp):
 // x/256 + 1/2 is exact in float (24 bits), truncated to an integer.
 template <int Shift>
 inline v16i columnByte(v32h top, v32h bottom, v16f wy) {
-  const v16u mask = v16u{} + (Shift ? 0xffffffffu : 0xffffu);
-  const v16f t = toFloat(v16i((v16u(top) >> Shift) & mask));
-  const v16f b = toFloat(v16i((v16u(bottom) >> Shift) & mask));
-  const v16f x = fmadd(b - t, wy, t);
+  const v16f x = columnSum<Shift>(top, bottom, wy);
   return v16i(_mm512_cvttps_epi32(__m512(fmadd(x, splat(1.0f / 256.0f), splat(0.5f)))));
 }
 
