@@ -1,0 +1,149 @@
+// The triangle walk of coverBlocks (raster_coverage.h), written once with GCC/Clang
+// vector extensions and compiled by each variant's file with its own flags: 16 lanes
+// are two ymm registers with AVX2, one zmm with AVX-512. Everything here has internal
+// linkage, so no variant can end up calling another's copy.
+#pragma once
+#include <cstdint>
+#include <cstring>
+#include <immintrin.h>
+
+#include "raster_coverage.h"
+
+namespace refx::pipeline {
+namespace {
+
+typedef int64_t v8l __attribute__((vector_size(64)));
+typedef int32_t v16i __attribute__((vector_size(64)));
+
+// Bit j set where lane j of a comparison result is all ones.
+inline uint32_t laneBits(v8l m) {
+#if defined(__AVX512DQ__)
+  __m512i x;
+  std::memcpy(&x, &m, sizeof x);
+  return _mm512_movepi64_mask(x);
+#else
+  __m256d h[2];
+  std::memcpy(h, &m, sizeof h);
+  return uint32_t(_mm256_movemask_pd(h[0])) | uint32_t(_mm256_movemask_pd(h[1])) << 4;
+#endif
+}
+inline uint32_t laneBits(v16i m) {
+#if defined(__AVX512DQ__)
+  __m512i x;
+  std::memcpy(&x, &m, sizeof x);
+  return _mm512_movepi32_mask(x);
+#else
+  __m256 h[2];
+  std::memcpy(h, &m, sizeof h);
+  return uint32_t(_mm256_movemask_ps(h[0])) | uint32_t(_mm256_movemask_ps(h[1])) << 8;
+#endif
+}
+
+// Lane bits of a block's pixel columns x >= c and x <= c, and rows likewise
+// (kLaneX/kLaneY of output_merger.h: column 0 is lanes 0, 2, 8, 10; row 0 lanes 0, 1, 4, 5).
+constexpr uint32_t kColumnsFrom[4] = {0xffff, 0xfafa, 0xf0f0, 0xa0a0};
+constexpr uint32_t kColumnsUpTo[4] = {0x0505, 0x0f0f, 0x5f5f, 0xffff};
+constexpr uint32_t kRowsFrom[4] = {0xffff, 0xffcc, 0xff00, 0xcc00};
+constexpr uint32_t kRowsUpTo[4] = {0x0033, 0x00ff, 0x33ff, 0xffff};
+
+// The lanes of a block whose pixels lie in [lo, hi] along one axis, from the block's
+// first coordinate b (lo - b <= 3, hi - b >= 0).
+inline uint32_t lanesWithin(const uint32_t (&from)[4], const uint32_t (&upTo)[4], int b, int lo, int hi) {
+  return from[lo - b > 0 ? lo - b : 0] & upTo[hi - b < 3 ? hi - b : 3];
+}
+
+constexpr int64_t kSubPixel = int64_t(1) << kSubPixelBits;
+
+// A lane's E minus its block's in int32 is exact when |A| + |B| times 3 pixels stays
+// within 2^29 subpixel units; the block's E, clamped to +-2^30, then gives every lane's
+// sign of E + offset without overflow (beyond 2^30 no offset can change the sign).
+constexpr int64_t kMaxLaneOffset32 = int64_t(1) << 29;
+constexpr int64_t kClampBlock32 = int64_t(1) << 30;
+
+// p's triangle: the covered blocks of the rectangle, row by row. Per row the blocks
+// entirely outside an edge (E + max offset <= 0) and entirely inside all three are
+// found for up to 16 blocks at once in int64; the others are tested lane by lane.
+int walkTriangle(const Primitive& p, int minX, int minY, int maxX, int maxY, CoveredBlock* out) {
+  if (minX > maxX || minY > maxY) return 0;
+  const int blocksX = (maxX - minX) / 4 + 1;  // 1..16
+  const int halves = blocksX > 8 ? 2 : 1;
+  const uint32_t rowBlocks = (1u << blocksX) - 1;
+  const v8l blockIndex = {0, 1, 2, 3, 4, 5, 6, 7};
+  int64_t eRow[3], stepX[3], stepY[3], lo[3], hi[3];
+  v8l blockOffset[3][2];
+  bool small = true;
+  for (int k = 0; k < 3; ++k) {
+    const int64_t a = p.edgeA[k], b = p.edgeB[k];
+    const int64_t ax = a * 3 * kSubPixel, by3 = b * 3 * kSubPixel;
+    lo[k] = (ax < 0 ? ax : 0) + (by3 < 0 ? by3 : 0);
+    hi[k] = (ax > 0 ? ax : 0) + (by3 > 0 ? by3 : 0);
+    stepX[k] = a * 4 * kSubPixel;
+    stepY[k] = b * 4 * kSubPixel;
+    eRow[k] = a * (minX * kSubPixel) + b * (minY * kSubPixel) + p.edgeC[k] + p.edgeBias[k];
+    blockOffset[k][0] = blockIndex * stepX[k];
+    blockOffset[k][1] = blockOffset[k][0] + 8 * stepX[k];
+    small &= hi[k] - lo[k] <= kMaxLaneOffset32;
+  }
+  // Each lane's E minus its block's: int32 for small edges, else int64 (two halves).
+  // Lane positions: kLaneX/kLaneY.
+  const v16i laneX = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
+  const v16i laneY = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
+  v16i laneOffset32[3];
+  v8l laneOffset64[3][2];
+  for (int k = 0; k < 3; ++k) {
+    if (small) {
+      laneOffset32[k] = int32_t(p.edgeA[k] * kSubPixel) * laneX + int32_t(p.edgeB[k] * kSubPixel) * laneY;
+    } else {
+      for (int l = 0; l < kBatchLanes; ++l)
+        laneOffset64[k][l / 8][l % 8] = p.edgeA[k] * kSubPixel * laneX[l] + p.edgeB[k] * kSubPixel * laneY[l];
+    }
+  }
+  int count = 0;
+  for (int by = minY; by <= maxY; by += 4) {
+    uint32_t outside = 0, inside = rowBlocks;
+    for (int h = 0; h < halves; ++h) {
+      uint32_t in = 0xff;
+      for (int k = 0; k < 3; ++k) {
+        const v8l e = eRow[k] + blockOffset[k][h];
+        outside |= laneBits(e + hi[k] <= 0) << (8 * h);
+        in &= laneBits(e + lo[k] > 0);
+      }
+      inside &= ~(0xffu << (8 * h)) | in << (8 * h);
+    }
+    uint32_t left = rowBlocks & ~outside;
+    const uint32_t rows = by < p.minY || by + 3 > p.maxY ? lanesWithin(kRowsFrom, kRowsUpTo, by, p.minY, p.maxY)
+                                                         : 0xffff;
+    while (left) {
+      const int i = __builtin_ctz(left);
+      left &= left - 1;
+      const int bx = minX + 4 * i;
+      uint32_t mask = 0xffff;
+      if (!(inside >> i & 1)) {
+        if (small) {
+          v16i lanes = v16i{} - 1;
+          for (int k = 0; k < 3; ++k) {
+            int64_t e = eRow[k] + i * stepX[k];
+            e = e < -kClampBlock32 ? -kClampBlock32 : e > kClampBlock32 ? kClampBlock32 : e;
+            lanes &= int32_t(e) + laneOffset32[k] > 0;
+          }
+          mask = laneBits(lanes);
+        } else {
+          v8l lanes[2] = {v8l{} - 1, v8l{} - 1};
+          for (int k = 0; k < 3; ++k) {
+            const int64_t e = eRow[k] + i * stepX[k];
+            for (int g = 0; g < 2; ++g) lanes[g] &= e + laneOffset64[k][g] > 0;
+          }
+          mask = laneBits(lanes[0]) | laneBits(lanes[1]) << 8;
+        }
+      }
+      mask &= rows;
+      if (bx < p.minX || bx + 3 > p.maxX) mask &= lanesWithin(kColumnsFrom, kColumnsUpTo, bx, p.minX, p.maxX);
+      if (mask) out[count++] = {bx, by, mask};
+    }
+    for (int k = 0; k < 3; ++k) eRow[k] += stepY[k];
+  }
+  return count;
+}
+
+}  // namespace
+}  // namespace refx::pipeline
