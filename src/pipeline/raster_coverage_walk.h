@@ -14,6 +14,7 @@ namespace {
 
 typedef int64_t v8l __attribute__((vector_size(64)));
 typedef int32_t v16i __attribute__((vector_size(64)));
+typedef int32_t v8i __attribute__((vector_size(32)));
 
 // Bit j set where lane j of a comparison result is all ones.
 inline uint32_t laneBits(v8l m) {
@@ -39,6 +40,32 @@ inline uint32_t laneBits(v16i m) {
 #endif
 }
 
+// Bits of the lanes where a + b > 0 (a comparison straight into a mask with AVX-512).
+inline uint32_t positiveBits(v8l a, int64_t b) {
+#if defined(__AVX512F__)
+  __m512i x;
+  std::memcpy(&x, &a, sizeof x);
+  return _mm512_cmpgt_epi64_mask(_mm512_add_epi64(x, _mm512_set1_epi64(b)), _mm512_setzero_si512());
+#else
+  return laneBits(a + b > 0);
+#endif
+}
+// Bits of the lanes where a + b0 > 0, c + b1 > 0 and e + b2 > 0.
+inline uint32_t positiveBits3(v16i a, int32_t b0, v16i c, int32_t b1, v16i e, int32_t b2) {
+#if defined(__AVX512F__)
+  __m512i x[3];
+  std::memcpy(&x[0], &a, sizeof a);
+  std::memcpy(&x[1], &c, sizeof c);
+  std::memcpy(&x[2], &e, sizeof e);
+  const __m512i zero = _mm512_setzero_si512();
+  __mmask16 m = _mm512_cmpgt_epi32_mask(_mm512_add_epi32(x[0], _mm512_set1_epi32(b0)), zero);
+  m = _mm512_mask_cmpgt_epi32_mask(m, _mm512_add_epi32(x[1], _mm512_set1_epi32(b1)), zero);
+  return _mm512_mask_cmpgt_epi32_mask(m, _mm512_add_epi32(x[2], _mm512_set1_epi32(b2)), zero);
+#else
+  return laneBits((a + b0 > 0) & (c + b1 > 0) & (e + b2 > 0));
+#endif
+}
+
 // Lane bits of a block's pixel columns x >= c and x <= c, and rows likewise
 // (kLaneX/kLaneY of output_merger.h: column 0 is lanes 0, 2, 8, 10; row 0 lanes 0, 1, 4, 5).
 constexpr uint32_t kColumnsFrom[4] = {0xffff, 0xfafa, 0xf0f0, 0xa0a0};
@@ -61,8 +88,10 @@ constexpr int64_t kMaxLaneOffset32 = int64_t(1) << 29;
 constexpr int64_t kClampBlock32 = int64_t(1) << 30;
 
 // p's triangle: the covered blocks of the rectangle, row by row. Per row the blocks
-// entirely outside an edge (E + max offset <= 0) and entirely inside all three are
-// found for up to 16 blocks at once in int64; the others are tested lane by lane.
+// entirely outside an edge (E + max offset <= 0) are found for up to 16 blocks at once
+// in int64, and the others tested lane by lane: small edges with the row's block E
+// clamped to int32 (a broadcast, an add and a compare per edge, also for blocks inside
+// all three), large ones in int64 unless the row's test found them inside all three.
 int walkTriangle(const Primitive& p, int minX, int minY, int maxX, int maxY, CoveredBlock* out) {
   if (minX > maxX || minY > maxY) return 0;
   const int blocksX = (maxX - minX) / 4 + 1;  // 1..16
@@ -101,12 +130,20 @@ int walkTriangle(const Primitive& p, int minX, int minY, int maxX, int maxY, Cov
   int count = 0;
   for (int by = minY; by <= maxY; by += 4) {
     uint32_t outside = 0, inside = rowBlocks;
+    alignas(64) int32_t blockE32[3][16];
     for (int h = 0; h < halves; ++h) {
       uint32_t in = 0xff;
       for (int k = 0; k < 3; ++k) {
         const v8l e = eRow[k] + blockOffset[k][h];
-        outside |= laneBits(e + hi[k] <= 0) << (8 * h);
-        in &= laneBits(e + lo[k] > 0);
+        outside |= (~positiveBits(e, hi[k]) & 0xff) << (8 * h);
+        if (small) {
+          v8l c = e < -kClampBlock32 ? -kClampBlock32 : e;
+          c = c > kClampBlock32 ? kClampBlock32 : c;
+          const v8i c32 = __builtin_convertvector(c, v8i);
+          std::memcpy(&blockE32[k][8 * h], &c32, sizeof c32);
+        } else {
+          in &= positiveBits(e, lo[k]);
+        }
       }
       inside &= ~(0xffu << (8 * h)) | in << (8 * h);
     }
@@ -118,23 +155,16 @@ int walkTriangle(const Primitive& p, int minX, int minY, int maxX, int maxY, Cov
       left &= left - 1;
       const int bx = minX + 4 * i;
       uint32_t mask = 0xffff;
-      if (!(inside >> i & 1)) {
-        if (small) {
-          v16i lanes = v16i{} - 1;
-          for (int k = 0; k < 3; ++k) {
-            int64_t e = eRow[k] + i * stepX[k];
-            e = e < -kClampBlock32 ? -kClampBlock32 : e > kClampBlock32 ? kClampBlock32 : e;
-            lanes &= int32_t(e) + laneOffset32[k] > 0;
-          }
-          mask = laneBits(lanes);
-        } else {
-          v8l lanes[2] = {v8l{} - 1, v8l{} - 1};
-          for (int k = 0; k < 3; ++k) {
-            const int64_t e = eRow[k] + i * stepX[k];
-            for (int g = 0; g < 2; ++g) lanes[g] &= e + laneOffset64[k][g] > 0;
-          }
-          mask = laneBits(lanes[0]) | laneBits(lanes[1]) << 8;
+      if (small) {  // a block inside all three edges gets all 16 lanes here too
+        mask = positiveBits3(laneOffset32[0], blockE32[0][i], laneOffset32[1], blockE32[1][i], laneOffset32[2],
+                             blockE32[2][i]);
+      } else if (!(inside >> i & 1)) {
+        v8l lanes[2] = {v8l{} - 1, v8l{} - 1};
+        for (int k = 0; k < 3; ++k) {
+          const int64_t e = eRow[k] + i * stepX[k];
+          for (int g = 0; g < 2; ++g) lanes[g] &= e + laneOffset64[k][g] > 0;
         }
+        mask = laneBits(lanes[0]) | laneBits(lanes[1]) << 8;
       }
       mask &= rows;
       if (bx < p.minX || bx + 3 > p.maxX) mask &= lanesWithin(kColumnsFrom, kColumnsUpTo, bx, p.minX, p.maxX);
