@@ -46,9 +46,15 @@ struct EdgeWalk {
 
 // Bit j set where lane j of m is all ones (m holds comparison results).
 inline uint32_t laneBits4(v4l m) {
+#if defined(__AVX__)
   __m256d d;
   std::memcpy(&d, &m, sizeof d);
   return uint32_t(_mm256_movemask_pd(d));  // the sign bits
+#else
+  uint32_t bits = 0;
+  for (int j = 0; j < 4; ++j) bits |= uint32_t(m[j] & 1) << j;
+  return bits;
+#endif
 }
 
 // Coverage of a 4x4 batch at (bx, by) by primitive p; for triangles e0 holds the

@@ -5,7 +5,9 @@
 #pragma once
 #include <cstdint>
 #include <cstring>
+#if defined(__AVX__)
 #include <immintrin.h>
+#endif
 
 #include "raster_coverage.h"
 
@@ -14,7 +16,7 @@ namespace {
 
 typedef int64_t v8l __attribute__((vector_size(64)));
 typedef int32_t v16i __attribute__((vector_size(64)));
-typedef int32_t v8i __attribute__((vector_size(32)));
+typedef int32_t v8i32 __attribute__((vector_size(32)));
 
 // Bit j set where lane j of a comparison result is all ones.
 inline uint32_t laneBits(v8l m) {
@@ -22,10 +24,14 @@ inline uint32_t laneBits(v8l m) {
   __m512i x;
   std::memcpy(&x, &m, sizeof x);
   return _mm512_movepi64_mask(x);
-#else
+#elif defined(__AVX__)
   __m256d h[2];
   std::memcpy(h, &m, sizeof h);
   return uint32_t(_mm256_movemask_pd(h[0])) | uint32_t(_mm256_movemask_pd(h[1])) << 4;
+#else
+  uint32_t bits = 0;
+  for (int j = 0; j < 8; ++j) bits |= uint32_t(m[j] & 1) << j;
+  return bits;
 #endif
 }
 inline uint32_t laneBits(v16i m) {
@@ -33,10 +39,14 @@ inline uint32_t laneBits(v16i m) {
   __m512i x;
   std::memcpy(&x, &m, sizeof x);
   return _mm512_movepi32_mask(x);
-#else
+#elif defined(__AVX__)
   __m256 h[2];
   std::memcpy(h, &m, sizeof h);
   return uint32_t(_mm256_movemask_ps(h[0])) | uint32_t(_mm256_movemask_ps(h[1])) << 8;
+#else
+  uint32_t bits = 0;
+  for (int j = 0; j < 16; ++j) bits |= uint32_t(m[j] & 1) << j;
+  return bits;
 #endif
 }
 
@@ -139,7 +149,7 @@ int walkTriangle(const Primitive& p, int minX, int minY, int maxX, int maxY, Cov
         if (small) {
           v8l c = e < -kClampBlock32 ? -kClampBlock32 : e;
           c = c > kClampBlock32 ? kClampBlock32 : c;
-          const v8i c32 = __builtin_convertvector(c, v8i);
+          const v8i32 c32 = __builtin_convertvector(c, v8i32);
           std::memcpy(&blockE32[k][8 * h], &c32, sizeof c32);
         } else {
           in &= positiveBits(e, lo[k]);
