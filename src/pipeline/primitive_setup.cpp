@@ -38,12 +38,14 @@ void wrapTowards(double base, double& v) {
 }
 
 // std::llround (halves away from zero) inline: the libm call was a good part of
-// triangle setup. x - trunc(x) is exact for every double.
+// triangle setup. x - trunc(x) is exact for every double. The step away from zero is
+// added without a branch: whether a coordinate's fraction reaches one half is as good
+// as random, and a mispredicted branch per coordinate cost more than the arithmetic.
 inline int64_t roundHalfAway(double x) {
   if (!(std::fabs(x) < 0x1p52)) return std::llround(x);  // huge or NaN: libm decides
   const double t = std::trunc(x);
-  const int64_t i = int64_t(t);
-  return std::fabs(x - t) >= 0.5 ? (x < 0 ? i - 1 : i + 1) : i;
+  const int64_t away = std::fabs(x - t) >= 0.5;
+  return int64_t(t) + (x < 0 ? -away : away);
 }
 
 // The value the depth buffer holds for a vertex: z, or w / w_far when w-buffering.
