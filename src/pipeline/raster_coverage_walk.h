@@ -1,6 +1,6 @@
 // The triangle walk of coverBlocks (raster_coverage.h), written once with GCC/Clang
-// vector extensions and compiled by each variant's file with its own flags: 16 lanes
-// are two ymm registers with AVX2, one zmm with AVX-512. Everything here has internal
+// vector extensions and compiled by each variant's file with its own flags: 16 int32
+// lanes are two ymm registers with AVX2, one zmm with AVX-512. Everything here has internal
 // linkage, so no variant can end up calling another's copy.
 #pragma once
 #include <cstdint>
@@ -14,44 +14,55 @@
 namespace refx::pipeline {
 namespace {
 
-typedef int64_t v8l __attribute__((vector_size(64)));
-typedef int32_t v16i __attribute__((vector_size(64)));
-typedef int32_t v8i32 __attribute__((vector_size(32)));
+// Vectors of the variant's native width (a wider vector type would be split by the
+// compiler through memory): 8 int64 or 16 int32 lanes with AVX-512, 4 or 8 with AVX2.
+#if defined(__AVX512F__)
+constexpr int kVectorBytes = 64;
+#else
+constexpr int kVectorBytes = 32;
+#endif
+typedef int64_t vl __attribute__((vector_size(kVectorBytes)));
+typedef int32_t vi __attribute__((vector_size(kVectorBytes)));
+constexpr int kLongLanes = kVectorBytes / 8, kIntLanes = kVectorBytes / 4;
+constexpr int kBlockGroups = 16 / kLongLanes;          // a row's 16 blocks
+constexpr int kLaneGroups64 = kBatchLanes / kLongLanes;  // a block's lanes in int64
+constexpr int kLaneGroups32 = kBatchLanes / kIntLanes;   // and in int32
+constexpr uint32_t kLongLaneBits = (1u << kLongLanes) - 1;
 
 // Bit j set where lane j of a comparison result is all ones.
-inline uint32_t laneBits(v8l m) {
+inline uint32_t laneBits(vl m) {
 #if defined(__AVX512DQ__)
   __m512i x;
   std::memcpy(&x, &m, sizeof x);
   return _mm512_movepi64_mask(x);
 #elif defined(__AVX__)
-  __m256d h[2];
-  std::memcpy(h, &m, sizeof h);
-  return uint32_t(_mm256_movemask_pd(h[0])) | uint32_t(_mm256_movemask_pd(h[1])) << 4;
+  __m256d x;
+  std::memcpy(&x, &m, sizeof x);
+  return uint32_t(_mm256_movemask_pd(x));
 #else
   uint32_t bits = 0;
-  for (int j = 0; j < 8; ++j) bits |= uint32_t(m[j] & 1) << j;
+  for (int j = 0; j < kLongLanes; ++j) bits |= uint32_t(m[j] & 1) << j;
   return bits;
 #endif
 }
-inline uint32_t laneBits(v16i m) {
+inline uint32_t laneBits(vi m) {
 #if defined(__AVX512DQ__)
   __m512i x;
   std::memcpy(&x, &m, sizeof x);
   return _mm512_movepi32_mask(x);
 #elif defined(__AVX__)
-  __m256 h[2];
-  std::memcpy(h, &m, sizeof h);
-  return uint32_t(_mm256_movemask_ps(h[0])) | uint32_t(_mm256_movemask_ps(h[1])) << 8;
+  __m256 x;
+  std::memcpy(&x, &m, sizeof x);
+  return uint32_t(_mm256_movemask_ps(x));
 #else
   uint32_t bits = 0;
-  for (int j = 0; j < 16; ++j) bits |= uint32_t(m[j] & 1) << j;
+  for (int j = 0; j < kIntLanes; ++j) bits |= uint32_t(m[j] & 1) << j;
   return bits;
 #endif
 }
 
 // Bits of the lanes where a + b > 0 (a comparison straight into a mask with AVX-512).
-inline uint32_t positiveBits(v8l a, int64_t b) {
+inline uint32_t positiveBits(vl a, int64_t b) {
 #if defined(__AVX512F__)
   __m512i x;
   std::memcpy(&x, &a, sizeof x);
@@ -60,19 +71,23 @@ inline uint32_t positiveBits(v8l a, int64_t b) {
   return laneBits(a + b > 0);
 #endif
 }
-// Bits of the lanes where a + b0 > 0, c + b1 > 0 and e + b2 > 0.
-inline uint32_t positiveBits3(v16i a, int32_t b0, v16i c, int32_t b1, v16i e, int32_t b2) {
+// The 16 lanes where a + b0 > 0, c + b1 > 0 and e + b2 > 0 (a, c, e: kLaneGroups32
+// vectors each).
+inline uint32_t positiveBits3(const vi* a, int32_t b0, const vi* c, int32_t b1, const vi* e, int32_t b2) {
 #if defined(__AVX512F__)
   __m512i x[3];
-  std::memcpy(&x[0], &a, sizeof a);
-  std::memcpy(&x[1], &c, sizeof c);
-  std::memcpy(&x[2], &e, sizeof e);
+  std::memcpy(&x[0], a, sizeof x[0]);
+  std::memcpy(&x[1], c, sizeof x[1]);
+  std::memcpy(&x[2], e, sizeof x[2]);
   const __m512i zero = _mm512_setzero_si512();
   __mmask16 m = _mm512_cmpgt_epi32_mask(_mm512_add_epi32(x[0], _mm512_set1_epi32(b0)), zero);
   m = _mm512_mask_cmpgt_epi32_mask(m, _mm512_add_epi32(x[1], _mm512_set1_epi32(b1)), zero);
   return _mm512_mask_cmpgt_epi32_mask(m, _mm512_add_epi32(x[2], _mm512_set1_epi32(b2)), zero);
 #else
-  return laneBits((a + b0 > 0) & (c + b1 > 0) & (e + b2 > 0));
+  uint32_t bits = 0;
+  for (int g = 0; g < kLaneGroups32; ++g)
+    bits |= laneBits((a[g] + b0 > 0) & (c[g] + b1 > 0) & (e[g] + b2 > 0)) << (kIntLanes * g);
+  return bits;
 #endif
 }
 
@@ -96,6 +111,14 @@ constexpr int64_t kSubPixel = int64_t(1) << kSubPixelBits;
 // sign of E + offset without overflow (beyond 2^30 no offset can change the sign).
 constexpr int64_t kMaxLaneOffset32 = int64_t(1) << 29;
 constexpr int64_t kClampBlock32 = int64_t(1) << 30;
+// The clamp of a row's block values as one vector pass needs AVX-512's int64 min, max
+// and narrowing; without them each block's values are clamped on their own.
+#if defined(__AVX512F__)
+constexpr bool kVectorClamp = true;
+typedef int32_t v8i32 __attribute__((vector_size(32)));  // a vl narrowed
+#else
+constexpr bool kVectorClamp = false;
+#endif
 
 // p's triangle: the covered blocks of the rectangle, row by row. Per row the blocks
 // entirely outside an edge (E + max offset <= 0) are found for up to 16 blocks at once
@@ -105,11 +128,12 @@ constexpr int64_t kClampBlock32 = int64_t(1) << 30;
 int walkTriangle(const Primitive& p, int minX, int minY, int maxX, int maxY, CoveredBlock* out) {
   if (minX > maxX || minY > maxY) return 0;
   const int blocksX = (maxX - minX) / 4 + 1;  // 1..16
-  const int halves = blocksX > 8 ? 2 : 1;
+  const int groups = (blocksX + kLongLanes - 1) / kLongLanes;
   const uint32_t rowBlocks = (1u << blocksX) - 1;
-  const v8l blockIndex = {0, 1, 2, 3, 4, 5, 6, 7};
+  vl blockIndex;
+  for (int j = 0; j < kLongLanes; ++j) blockIndex[j] = j;
   int64_t eRow[3], stepX[3], stepY[3], lo[3], hi[3];
-  v8l blockOffset[3][2];
+  vl blockOffset[3][kBlockGroups];
   bool small = true;
   for (int k = 0; k < 3; ++k) {
     const int64_t a = p.edgeA[k], b = p.edgeB[k];
@@ -120,42 +144,49 @@ int walkTriangle(const Primitive& p, int minX, int minY, int maxX, int maxY, Cov
     stepY[k] = b * 4 * kSubPixel;
     eRow[k] = a * (minX * kSubPixel) + b * (minY * kSubPixel) + p.edgeC[k] + p.edgeBias[k];
     blockOffset[k][0] = blockIndex * stepX[k];
-    blockOffset[k][1] = blockOffset[k][0] + 8 * stepX[k];
+    for (int h = 1; h < kBlockGroups; ++h) blockOffset[k][h] = blockOffset[k][h - 1] + kLongLanes * stepX[k];
     small &= hi[k] - lo[k] <= kMaxLaneOffset32;
   }
-  // Each lane's E minus its block's: int32 for small edges, else int64 (two halves).
-  // Lane positions: kLaneX/kLaneY.
-  const v16i laneX = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
-  const v16i laneY = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
-  v16i laneOffset32[3];
-  v8l laneOffset64[3][2];
+  // Each lane's E minus its block's: int32 for small edges, else int64. Lane
+  // positions: kLaneX/kLaneY.
+  constexpr int8_t laneX[kBatchLanes] = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
+  constexpr int8_t laneY[kBatchLanes] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
+  vi laneOffset32[3][kLaneGroups32];
+  vl laneOffset64[3][kLaneGroups64];
   for (int k = 0; k < 3; ++k) {
     if (small) {
-      laneOffset32[k] = int32_t(p.edgeA[k] * kSubPixel) * laneX + int32_t(p.edgeB[k] * kSubPixel) * laneY;
+      for (int g = 0; g < kLaneGroups32; ++g) {
+        vi x, y;
+        for (int j = 0; j < kIntLanes; ++j) x[j] = laneX[kIntLanes * g + j], y[j] = laneY[kIntLanes * g + j];
+        laneOffset32[k][g] = int32_t(p.edgeA[k] * kSubPixel) * x + int32_t(p.edgeB[k] * kSubPixel) * y;
+      }
     } else {
       for (int l = 0; l < kBatchLanes; ++l)
-        laneOffset64[k][l / 8][l % 8] = p.edgeA[k] * kSubPixel * laneX[l] + p.edgeB[k] * kSubPixel * laneY[l];
+        laneOffset64[k][l / kLongLanes][l % kLongLanes] =
+            p.edgeA[k] * kSubPixel * laneX[l] + p.edgeB[k] * kSubPixel * laneY[l];
     }
   }
   int count = 0;
   for (int by = minY; by <= maxY; by += 4) {
     uint32_t outside = 0, inside = rowBlocks;
     alignas(64) int32_t blockE32[3][16];
-    for (int h = 0; h < halves; ++h) {
-      uint32_t in = 0xff;
+    for (int h = 0; h < groups; ++h) {
+      uint32_t in = kLongLaneBits;
       for (int k = 0; k < 3; ++k) {
-        const v8l e = eRow[k] + blockOffset[k][h];
-        outside |= (~positiveBits(e, hi[k]) & 0xff) << (8 * h);
-        if (small) {
-          v8l c = e < -kClampBlock32 ? -kClampBlock32 : e;
+        const vl e = eRow[k] + blockOffset[k][h];
+        outside |= (~positiveBits(e, hi[k]) & kLongLaneBits) << (kLongLanes * h);
+        if (!small) {
+          in &= positiveBits(e, lo[k]);
+        } else {
+#if defined(__AVX512F__)
+          vl c = e < -kClampBlock32 ? -kClampBlock32 : e;
           c = c > kClampBlock32 ? kClampBlock32 : c;
           const v8i32 c32 = __builtin_convertvector(c, v8i32);
-          std::memcpy(&blockE32[k][8 * h], &c32, sizeof c32);
-        } else {
-          in &= positiveBits(e, lo[k]);
+          std::memcpy(&blockE32[k][kLongLanes * h], &c32, sizeof c32);
+#endif
         }
       }
-      inside &= ~(0xffu << (8 * h)) | in << (8 * h);
+      inside &= ~(kLongLaneBits << (kLongLanes * h)) | in << (kLongLanes * h);
     }
     uint32_t left = rowBlocks & ~outside;
     const uint32_t rows = by < p.minY || by + 3 > p.maxY ? lanesWithin(kRowsFrom, kRowsUpTo, by, p.minY, p.maxY)
@@ -166,15 +197,20 @@ int walkTriangle(const Primitive& p, int minX, int minY, int maxX, int maxY, Cov
       const int bx = minX + 4 * i;
       uint32_t mask = 0xffff;
       if (small) {  // a block inside all three edges gets all 16 lanes here too
+        if constexpr (!kVectorClamp)
+          for (int k = 0; k < 3; ++k) {
+            const int64_t e = eRow[k] + i * stepX[k];
+            blockE32[k][i] = int32_t(e < -kClampBlock32 ? -kClampBlock32 : e > kClampBlock32 ? kClampBlock32 : e);
+          }
         mask = positiveBits3(laneOffset32[0], blockE32[0][i], laneOffset32[1], blockE32[1][i], laneOffset32[2],
                              blockE32[2][i]);
       } else if (!(inside >> i & 1)) {
-        v8l lanes[2] = {v8l{} - 1, v8l{} - 1};
-        for (int k = 0; k < 3; ++k) {
-          const int64_t e = eRow[k] + i * stepX[k];
-          for (int g = 0; g < 2; ++g) lanes[g] &= e + laneOffset64[k][g] > 0;
+        mask = 0;
+        for (int g = 0; g < kLaneGroups64; ++g) {
+          vl lanes = vl{} - 1;
+          for (int k = 0; k < 3; ++k) lanes &= eRow[k] + i * stepX[k] + laneOffset64[k][g] > 0;
+          mask |= laneBits(lanes) << (kLongLanes * g);
         }
-        mask = laneBits(lanes[0]) | laneBits(lanes[1]) << 8;
       }
       mask &= rows;
       if (bx < p.minX || bx + 3 > p.maxX) mask &= lanesWithin(kColumnsFrom, kColumnsUpTo, bx, p.minX, p.maxX);
