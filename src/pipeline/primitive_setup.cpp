@@ -38,12 +38,14 @@ void wrapTowards(double base, double& v) {
 }
 
 // std::llround (halves away from zero) inline: the libm call was a good part of
-// triangle setup. x - trunc(x) is exact for every double.
+// triangle setup. x - trunc(x) is exact for every double. The step away from zero is
+// added without a branch: whether a coordinate's fraction reaches one half is as good
+// as random, and a mispredicted branch per coordinate cost more than the arithmetic.
 inline int64_t roundHalfAway(double x) {
   if (!(std::fabs(x) < 0x1p52)) return std::llround(x);  // huge or NaN: libm decides
   const double t = std::trunc(x);
-  const int64_t i = int64_t(t);
-  return std::fabs(x - t) >= 0.5 ? (x < 0 ? i - 1 : i + 1) : i;
+  const int64_t away = std::fabs(x - t) >= 0.5;
+  return int64_t(t) + (x < 0 ? -away : away);
 }
 
 // The value the depth buffer holds for a vertex: z, or w / w_far when w-buffering.
@@ -286,14 +288,22 @@ void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPoint
   clip.guardBand = gb;
   if (!vcfg.pretransformed) userClipPlanes(st, plan.vertexShader != nullptr, clip);
 
+  // Triangles share vertices: each one's screen position and whether it needs clipping,
+  // once per vertex.
+  const bool triangles = type == PT_TRIANGLELIST || type == PT_TRIANGLESTRIP || type == PT_TRIANGLEFAN;
+  std::vector<SetupVertex> screen(triangles ? verts.size() : 0);
+  std::vector<uint8_t> needsClip(screen.size(), 0);
+  for (size_t i = 0; i < screen.size(); ++i) {
+    toScreen(verts[i].out, screen[i]);
+    needsClip[i] = !vcfg.pretransformed && clip.outside(verts[i].out[0]);
+  }
+
   std::vector<ClipVertex> poly;
   auto triangle = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
-    const Vec4* o[3] = {vertexOut(i0), vertexOut(i1), vertexOut(i2)};
-    auto emit = [&](const Vec4* a, const Vec4* b, const Vec4* c) {
-      SetupVertex sv[3];
-      toScreen(a, sv[0]);
-      toScreen(b, sv[1]);
-      toScreen(c, sv[2]);
+    auto emitScreen = [&](SetupVertex (&sv)[3]) {
+      const Vec4* a = sv[0].varyings;
+      const Vec4* b = sv[1].varyings;
+      const Vec4* c = sv[2].varyings;
       if (fill == FILL_SOLID) {
         setupTriangle(d, sv, cull, bounds, flat);
         return;
@@ -321,11 +331,20 @@ void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPoint
         for (int k = 0; k < 3; ++k) setupPoint(d, sv[k], pointSizeOf(outs[k]), bounds, pointSprite);
       }
     };
-    if (vcfg.pretransformed ||
-        (!clip.outside(o[0][0]) && !clip.outside(o[1][0]) && !clip.outside(o[2][0]))) {
-      emit(o[0], o[1], o[2]);
+    auto emit = [&](const Vec4* a, const Vec4* b, const Vec4* c) {
+      SetupVertex sv[3];
+      toScreen(a, sv[0]);
+      toScreen(b, sv[1]);
+      toScreen(c, sv[2]);
+      emitScreen(sv);
+    };
+    const uint32_t v0 = i0 - lo, v1 = i1 - lo, v2 = i2 - lo;
+    if (!needsClip[v0] && !needsClip[v1] && !needsClip[v2]) {
+      SetupVertex sv[3] = {screen[v0], screen[v1], screen[v2]};
+      emitScreen(sv);
       return;
     }
+    const Vec4* o[3] = {vertexOut(i0), vertexOut(i1), vertexOut(i2)};
     poly.assign(3, {});
     for (int k = 0; k < 3; ++k) std::memcpy(poly[k].v, o[k], sizeof(poly[k].v));
     clipPolygon(poly, clip);

@@ -3,13 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
 
 #include "ff_pixel.h"
 #include "merge_kernels.h"
 #include "output_merger.h"
+#include "raster_coverage.h"
 #include "raster_fill.h"
 #include "raster_interpolate.h"
 #include "refx/core/cpu_features.h"
@@ -43,100 +41,12 @@ void bin(const RasterDraw& d, TileBins& bins) {
 alignas(64) constexpr float kLaneXf[N] = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
 alignas(64) constexpr float kLaneYf[N] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
 
-constexpr int64_t kOne = int64_t(1) << kSubPixelBits;
-
-// Four int64 lanes (GCC/Clang vector extensions: vpaddq, vpcmpgtq).
-typedef int64_t v4l __attribute__((vector_size(32)));
-
-// A triangle's edge functions stepped from block to block: E at a block's top-left
-// pixel centre and the extremes over its 4x4 pixel centres relative to it.
-struct EdgeWalk {
-  int64_t lo[3], hi[3];  // offsets of the block's minimum and maximum
-  int64_t stepX[3];      // E(bx + 4) - E(bx)
-  // Triangles: E at each lane's pixel centre minus E at the block's top-left one, in
-  // lane order (four lanes to a v4l).
-  v4l laneOffset[3][N / 4];
-
-  explicit EdgeWalk(const Primitive& p) {
-    for (int k = 0; k < 3; ++k) {
-      const int64_t ax = p.edgeA[k] * 3 * kOne, by3 = p.edgeB[k] * 3 * kOne;
-      lo[k] = std::min<int64_t>(ax, 0) + std::min<int64_t>(by3, 0);
-      hi[k] = std::max<int64_t>(ax, 0) + std::max<int64_t>(by3, 0);
-      stepX[k] = p.edgeA[k] * 4 * kOne;
-      if (p.kind != PrimKind::Triangle) continue;
-      for (int l = 0; l < N; ++l)
-        laneOffset[k][l / 4][l % 4] = p.edgeA[k] * kOne * kLaneX[l] + p.edgeB[k] * kOne * kLaneY[l];
-    }
-  }
-  static void at(const Primitive& p, int bx, int by, int64_t e[3]) {
-    for (int k = 0; k < 3; ++k)
-      e[k] = p.edgeA[k] * (bx * kOne) + p.edgeB[k] * (by * kOne) + p.edgeC[k] + p.edgeBias[k];
-  }
-};
-
-// Bit j set where lane j of m is all ones (m holds comparison results).
-inline uint32_t laneBits(v4l m) {
-#if defined(__AVX__)
-  __m256d d;
-  std::memcpy(&d, &m, sizeof d);
-  return uint32_t(_mm256_movemask_pd(d));  // the sign bits
-#else
-  uint32_t bits = 0;
-  for (int j = 0; j < 4; ++j) bits |= uint32_t(m[j] & 1) << j;
-  return bits;
-#endif
-}
-
-// Coverage of a 4x4 batch at (bx, by) by primitive p; for triangles e0 holds the
-// edge functions at (bx, by) (EdgeWalk::at).
-uint16_t coverage(const Primitive& p, const EdgeWalk& walk, const int64_t* e0, int bx, int by) {
-  uint16_t mask = 0;
-  if (p.kind == PrimKind::Triangle) {
-    bool inside = true;
-    for (int k = 0; k < 3; ++k) {
-      if (e0[k] + walk.hi[k] <= 0) return 0;  // whole block outside this edge
-      inside &= e0[k] + walk.lo[k] > 0;
-    }
-    if (inside) {
-      mask = 0xffff;
-    } else {
-      // Per lane, in int64: E(lane) = E(block) + the lane's offset, exact (every term is
-      // below 2^53: subpixel coordinates stay within the guard band).
-      v4l in[4];
-      for (int g = 0; g < 4; ++g) in[g] = v4l{} - 1;
-      for (int k = 0; k < 3; ++k) {
-        const v4l e = v4l{} + e0[k];
-        for (int g = 0; g < 4; ++g) in[g] &= (e + walk.laneOffset[k][g]) > 0;
-      }
-      for (int g = 0; g < 4; ++g) mask |= uint16_t(laneBits(in[g]) << (4 * g));
-    }
-  } else if (p.kind == PrimKind::Line) {
-    // One pixel per step along the major axis: the pixel whose centre is nearest
-    // the line (ties toward the smaller coordinate).
-    for (int l = 0; l < N; ++l) {
-      const int x = bx + kLaneX[l], y = by + kLaneY[l];
-      const int major = p.xMajor ? x : y, minor = p.xMajor ? y : x;
-      const float m = p.lineM * float(major) + p.lineQ;
-      const bool in = minor == int(std::ceil(m - 0.5f));
-      mask |= uint16_t(in) << l;
-    }
-  } else {
-    mask = 0xffff;  // points: the bounding box is the point's footprint
-  }
-  // Clip to the primitive's scissor/viewport bounds (only blocks on the border).
-  if (bx < p.minX || by < p.minY || bx + 3 > p.maxX || by + 3 > p.maxY) {
-    for (int l = 0; l < N; ++l) {
-      const int x = bx + kLaneX[l], y = by + kLaneY[l];
-      if (x < p.minX || x > p.maxX || y < p.minY || y > p.maxY) mask &= uint16_t(~(1u << l));
-    }
-  }
-  return mask;
-}
-
 struct TileWorker {
   exec::BatchRegisters regs;
   std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations, in order
   InterpolateInputsFn interpolateInputs = nullptr;
+  CoverBlocksFn coverBlocks = nullptr;
+  CoveredBlock blocks[kMaxTileBlocks];  // one primitive's in the current tile
   LazyFill lazyFill;       // the draw's
   PendingBlocks pending;   // the current tile's
   alignas(64) float z[N];
@@ -308,17 +218,9 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
     const Primitive& p = d.prims[pi];
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
     const int maxX = std::min(p.maxX, x1), maxY = std::min(p.maxY, y1);
-    const EdgeWalk walk(p);
-    const bool tri = p.kind == PrimKind::Triangle;
-    for (int by = minY; by <= maxY; by += 4) {
-      int64_t e[3] = {};
-      if (tri) EdgeWalk::at(p, minX, by, e);
-      for (int bx = minX; bx <= maxX; bx += 4) {
-        const uint16_t mask = coverage(p, walk, e, bx, by);
-        if (mask) shadeBatch<F, Write, Opaque>(d, p, bx, by, mask, w, count);
-        for (int k = 0; k < 3; ++k) e[k] += walk.stepX[k];
-      }
-    }
+    const int blocks = w.coverBlocks(p, minX, minY, maxX, maxY, w.blocks);
+    for (int i = 0; i < blocks; ++i)
+      shadeBatch<F, Write, Opaque>(d, p, w.blocks[i].bx, w.blocks[i].by, uint16_t(w.blocks[i].mask), w, count);
   }
   finishTileFill(d, w.lazyFill, w.pending);
   shaded += count;
@@ -413,6 +315,7 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
         exec::prepare(*draw.pixelProgram, draw.execContext, w.regs, draw.prepareOptions);
     if (draw.pixelBuild && &w == &workers[0]) *draw.pixelBuild = info;
     w.interpolateInputs = chooseInterpolateInputs();
+    w.coverBlocks = chooseCoverBlocks();
     w.lazyFill = lazyFillFor(draw);
     w.passTargets[0] = {w.passU, false};
     w.passTargets[1] = {w.passV, false};
