@@ -68,7 +68,7 @@ inline uint32_t positiveBits(vl a, int64_t b) {
   std::memcpy(&x, &a, sizeof x);
   return _mm512_cmpgt_epi64_mask(_mm512_add_epi64(x, _mm512_set1_epi64(b)), _mm512_setzero_si512());
 #else
-  return laneBits(a + b > 0);
+  return laneBits(vl(a + b > 0));  // (clang's comparison type converts to vl and vi alike)
 #endif
 }
 // The 16 lanes where a + b0 > 0, c + b1 > 0 and e + b2 > 0 (a, c, e: kLaneGroups32
@@ -86,7 +86,7 @@ inline uint32_t positiveBits3(const vi* a, int32_t b0, const vi* c, int32_t b1, 
 #else
   uint32_t bits = 0;
   for (int g = 0; g < kLaneGroups32; ++g)
-    bits |= laneBits((a[g] + b0 > 0) & (c[g] + b1 > 0) & (e[g] + b2 > 0)) << (kIntLanes * g);
+    bits |= laneBits(vi((a[g] + b0 > 0) & (c[g] + b1 > 0) & (e[g] + b2 > 0))) << (kIntLanes * g);
   return bits;
 #endif
 }
