@@ -1769,6 +1769,15 @@ class Builder {
       at += n;
       return;
     }
+    // A value that failed to convert to the output's type (reported where it failed)
+    // has fewer components than the type: nothing to bind.
+    if (at + size_t(n) > comps.size()) {
+      if (!sink_->hasErrors())
+        sink_->error(where, "X3017", "'{}': the output value has {} components, its type needs {}", opt_.entry,
+                     comps.size() > at ? comps.size() - at : 0, n);
+      at += n;
+      return;
+    }
     Semantic sem = parseSemantic(semantic);
     bool ok = sem.valid && !sem.vpos && !sem.vface;
     if (isPixel()) ok = ok && (sem.usage == DeclUsage::Color || sem.usage == DeclUsage::Depth);
