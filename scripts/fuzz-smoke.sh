@@ -2,9 +2,9 @@
 # Runs every fuzz target (fuzz/fuzz_NAME.cpp) for SECONDS (default 20) on its seed
 # corpus fuzz/seeds/NAME, as many at once as there are cores, from the sanitized build
 # (scripts/sanitize-build.sh). The mutations come from a fixed random seed (FUZZ_SEED,
-# default 1), so a run explores the same inputs in the same order on every machine (a
-# faster machine just gets further): a failure here reproduces, and a longer run with the
-# same seed covers what a shorter one does. Open-ended fuzzing: scripts/fuzz.sh. New inputs go to a scratch corpus that is thrown away;
+# default 1), so the same build explores the same inputs in the same order (a faster
+# machine just gets further); another build (other code, another checkout path) may take
+# another path. A failing input is kept either way. Open-ended fuzzing: scripts/fuzz.sh. New inputs go to a scratch corpus that is thrown away;
 # a crash, sanitizer report, leak or timeout fails the run and its input is kept in
 # fuzz-corpus/NAME-artifacts/ (reproduce with build-sanitize/fuzz/fuzz_NAME FILE).
 #   scripts/fuzz-smoke.sh [SECONDS]
