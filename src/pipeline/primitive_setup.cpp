@@ -10,6 +10,23 @@
 
 namespace refx::pipeline {
 
+void setTriangleEdges(const int64_t (&X)[3], const int64_t (&Y)[3], bool counterClockwise, Primitive& p) {
+  int order[3] = {0, 1, 2};
+  if (counterClockwise) std::swap(order[1], order[2]);
+  p.kind = PrimKind::Triangle;
+  p.counterClockwise = counterClockwise;
+  for (int k = 0; k < 3; ++k) {
+    const int a = order[k], b = order[(k + 1) % 3];
+    const int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
+    // E(P) = (P.y - a.y)*dx - (P.x - a.x)*dy, positive inside a clockwise triangle.
+    p.edgeA[k] = -dy;
+    p.edgeB[k] = dx;
+    p.edgeC[k] = -Y[a] * dx + X[a] * dy;
+    const bool topLeft = (dy == 0 && dx > 0) || dy < 0;
+    p.edgeBias[k] = topLeft ? 1 : 0;
+  }
+}
+
 using namespace d3d;
 
 namespace {
@@ -72,21 +89,8 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
   if (area == 0) return;
   const bool ccw = area < 0;  // y points down: positive area is clockwise on screen
   if ((cull == CULL_CCW && ccw) || (cull == CULL_CW && !ccw)) return;
-  int order[3] = {0, 1, 2};
-  if (ccw) std::swap(order[1], order[2]);
   Primitive p{};
-  p.kind = PrimKind::Triangle;
-  p.counterClockwise = ccw;
-  for (int k = 0; k < 3; ++k) {
-    const int a = order[k], b = order[(k + 1) % 3];
-    const int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-    // E(P) = (P.y - a.y)*dx - (P.x - a.x)*dy, positive inside a clockwise triangle.
-    p.edgeA[k] = -dy;
-    p.edgeB[k] = dx;
-    p.edgeC[k] = -Y[a] * dx + X[a] * dy;
-    const bool topLeft = (dy == 0 && dx > 0) || dy < 0;
-    p.edgeBias[k] = topLeft ? 1 : 0;
-  }
+  setTriangleEdges(X, Y, ccw, p);
   const double minx = std::min({X[0], X[1], X[2]}) / one, maxx = std::max({X[0], X[1], X[2]}) / one;
   const double miny = std::min({Y[0], Y[1], Y[2]}) / one, maxy = std::max({Y[0], Y[1], Y[2]}) / one;
   p.minX = std::max(bounds.left, int(std::ceil(minx)));

@@ -151,4 +151,10 @@ void applyFill(const RasterDraw::Fill& fill, DepthStencilSurface* depth, int x0,
 // Bins the draw's primitives and shades all tiles on the pool.
 void rasterize(RasterDraw& draw, ThreadPool& pool);
 
+// A triangle's edge functions from its subpixel vertices (X, Y) and winding (the sign of
+// its area: y points down, counter-clockwise on screen is negative): E = (P.y - a.y)*dx -
+// (P.x - a.x)*dy of each edge a->b in clockwise order, positive inside, with the top-left
+// rule's bias (a pixel centre on a top or left edge is inside).
+void setTriangleEdges(const int64_t (&X)[3], const int64_t (&Y)[3], bool counterClockwise, Primitive& p);
+
 }  // namespace refx::pipeline

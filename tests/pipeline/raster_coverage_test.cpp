@@ -18,28 +18,15 @@ namespace {
 
 constexpr int64_t kOne = int64_t(1) << kSubPixelBits;
 
-// A triangle with subpixel vertices (X, Y) set up as Direct3D's rules say: edge
-// functions E = (P.y - a.y)*dx - (P.x - a.x)*dy of each edge a->b in clockwise order,
-// positive inside; a pixel centre on a top edge (dy == 0, dx > 0) or a left edge
-// (dy < 0) is inside (bias 1, i.e. E >= 0), on another edge outside. Bounds: the
+// A triangle with subpixel vertices (X, Y): the device's edge functions
+// (setTriangleEdges; the shared-edge test below checks their top-left rule). Bounds: the
 // vertices' pixel bounding box within `clip` (inclusive). False: degenerate or empty.
 bool makeTriangle(const int64_t (&X)[3], const int64_t (&Y)[3], int clipX0, int clipY0, int clipX1,
                   int clipY1, Primitive& p) {
   const int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
   if (area == 0) return false;
   p = Primitive{};
-  p.kind = PrimKind::Triangle;
-  p.counterClockwise = area < 0;
-  int order[3] = {0, 1, 2};
-  if (area < 0) std::swap(order[1], order[2]);
-  for (int k = 0; k < 3; ++k) {
-    const int a = order[k], b = order[(k + 1) % 3];
-    const int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-    p.edgeA[k] = -dy;
-    p.edgeB[k] = dx;
-    p.edgeC[k] = -Y[a] * dx + X[a] * dy;
-    p.edgeBias[k] = (dy == 0 && dx > 0) || dy < 0 ? 1 : 0;
-  }
+  setTriangleEdges(X, Y, area < 0, p);
   auto ceilPixel = [](int64_t v) { return int(std::ceil(double(v) / kOne)); };
   auto floorPixel = [](int64_t v) { return int(std::floor(double(v) / kOne)); };
   p.minX = std::max(clipX0, ceilPixel(std::min({X[0], X[1], X[2]})));
