@@ -71,6 +71,8 @@ void bindPixelStage(const DrawPlan& plan, const DeviceState& st, PixelBindings& 
     b.samplers[size_t(s)].context = &bound;
     b.samplers[size_t(s)].sample =
         prepared && bound.prepared->implicitKernel().fn ? sampleBoundKernel : sampleBound;
+    b.samplers[size_t(s)].samplePair = prepared ? bound.prepared->implicitPair() : nullptr;
+    b.samplers[size_t(s)].pairContext = prepared ? bound.prepared->implicitKernel().context : nullptr;
   }
   // The constant file: a pixel shader's float constants and the bump environment
   // (exec/abi.h); below ps_3_0, and for fixed function, the values the texture stages

@@ -1368,6 +1368,7 @@ struct PreparedPlan {
   // with sampleImplicit's other paths behind it (context: uniformPlan).
   resource::Uniform2D uniform = nullptr;
   resource::Implicit2D implicit = nullptr;
+  resource::ImplicitPair2D implicitPair = nullptr;  // two `implicit` calls in one
   resource::UniformColors2D uniformColors = nullptr;  // `uniform` as 8-bit unorm D3DCOLORs
   resource::UniformPlan uniformPlan{};
 
@@ -1388,6 +1389,7 @@ struct PreparedPlan {
         activeIsa() == CpuIsa::Avx512) {
       uniform = resource::selectUniform2DAvx512(addr[0], addr[1]);
       implicit = resource::selectImplicit2DAvx512(addr[0], addr[1]);
+      implicitPair = resource::selectImplicitPair2DAvx512(addr[0], addr[1]);
       uniformColors = resource::selectUniformColors2DAvx512(addr[0], addr[1]);
       uniformPlan = {{fast.size[0], fast.size[1]}, fast.first, fast.last, fast.minLinear,
                      fast.magLinear, fast.mipNone, levels.data(), sampleImplicitRest, this};
@@ -1413,6 +1415,7 @@ PreparedSampler::PreparedSampler(const Texture& tex, const SamplerState& state)
     auto plan = std::make_shared<const PreparedPlan>(tex, state, addr);
     implicit_ = plan->implicit ? ImplicitKernel{plan->implicit, &plan->uniformPlan}
                                : ImplicitKernel{PreparedPlan::sampleImplicitRest, plan.get()};
+    pair_ = plan->implicitPair;
     plan_ = std::move(plan);
   }
 }

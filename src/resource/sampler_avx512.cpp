@@ -149,9 +149,27 @@ inline void loadPairs16(const uint32_t* texels, v16i a, v16u& first, v16u& secon
 // (loadQuads8 of sampler.cpp, 16 lanes). Faster than four vpgatherdq on current cores.
 inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& p10, v16u& p01,
                         v16u& p11) {
+#ifdef EXP_EXTRACT
+  int ix[16];
+  {
+    const __m512i z = __m512i(a);
+    for (int b = 0; b < 4; ++b) {
+      const __m128i q = _mm512_extracti32x4_epi32(z, 0);
+      const __m128i qq = b == 0 ? _mm512_castsi512_si128(z) : b == 1 ? _mm512_extracti32x4_epi32(z, 1) : b == 2 ? _mm512_extracti32x4_epi32(z, 2) : _mm512_extracti32x4_epi32(z, 3);
+      (void)q;
+      ix[4*b] = _mm_cvtsi128_si32(qq); ix[4*b+1] = _mm_extract_epi32(qq, 1); ix[4*b+2] = _mm_extract_epi32(qq, 2); ix[4*b+3] = _mm_extract_epi32(qq, 3);
+    }
+  }
+#elif defined(EXP_STORE256)
+  alignas(64) int ix[16];
+  _mm256_store_si256((__m256i*)ix, _mm512_castsi512_si256(__m512i(a)));
+  _mm256_store_si256((__m256i*)(ix + 8), _mm512_extracti64x4_epi64(__m512i(a), 1));
+  asm volatile("" ::: "memory");
+#else
   alignas(64) int ix[16];
   std::memcpy(ix, &a, sizeof ix);
   asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
+#endif
   // The bottom row from its own base register: both loads of a lane take its index as
   // is, with no address arithmetic per lane (the compiler would otherwise add w to it).
   const uint32_t* below = texels + w;
@@ -241,44 +259,48 @@ inline v16i columnByte(v32h top, v32h bottom, v16f wy) {
   return v16i(_mm512_cvttps_epi32(__m512(fmadd(x, splat(1.0f / 256.0f), splat(0.5f)))));
 }
 
-// Out of line: its callers reach it by a jump, and the batch classification in front of
-// it keeps a frame without stack realignment (this one's 64-byte index buffers).
-// Out: float (*)[kLanes] (the channels as the shader sees them) or uint32_t* (their
-// 8-bit unorms as D3DCOLORs, PreparedSampler::sampleImplicitArgb8).
-template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false, class Out = float (*)[kLanes]>
-[[gnu::noinline]] void filter16(const SampleLevel& lv, const float* u, const float* v,
-                                __mmask16 mask, Out out) {
+// The texels of `count` levels of one size at the same positions, addresses and
+// weights computed once: level k's result into out[k]. Out: float (*)[kLanes] (the
+// channels as the shader sees them) or uint32_t* (their 8-bit unorms as D3DCOLORs,
+// PreparedSampler::sampleImplicitArgb8).
+template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge, class Out, int Count>
+[[gnu::always_inline]] inline void filterLevels(const SampleLevel* const (&levels)[Count], const float* u,
+                                                const float* v, __mmask16 mask, Out const (&out)[Count]) {
   constexpr bool colors = std::is_same_v<Out, uint32_t*>;
-  const int w = lv.width, h = lv.height;
+  const int w = levels[0]->width, h = levels[0]->height;
   float loU, hiU, loV, hiV;
   positionRange(AU, w, loU, hiU);
   positionRange(AV, h, loV, hiV);
-  const uint32_t* texels = lv.rgba8.data();
   v16i x0, x1, y0, y1, fixedX, fixedY;
   axis16<AU, Linear>(u, float(w), loU, hiU, w, x0, x1, fixedX);
   axis16<AV, Linear>(v, float(h), loV, hiV, h, y0, y1, fixedY);
   const v16i r0 = y0 * w;
   if constexpr (!Linear) {
-    const v16u p = load16(texels, r0 + x0);
-    if constexpr (colors)
-      storeColors<Merge>(out, texelColors(p), mask);  // unorm8(b/255) = b
-    else
-      for (int ch = 0; ch < 4; ++ch) store<Merge>(out[ch], byteOver255(channel(p, 8 * ch)), mask);
+    for (int k = 0; k < Count; ++k) {
+      const v16u p = load16(levels[k]->rgba8.data(), r0 + x0);
+      if constexpr (colors)
+        storeColors<Merge>(out[k], texelColors(p), mask);  // unorm8(b/255) = b
+      else
+        for (int ch = 0; ch < 4; ++ch) store<Merge>(out[k][ch], byteOver255(channel(p, 8 * ch)), mask);
+    }
   } else {
-    v16u p00, p10, p01, p11;
+    v16u p00[Count], p10[Count], p01[Count], p11[Count];
     const bool pairs = allDiffer(x0, x1, 1);
     // y1 = y0 + 1 is r1 = r0 + w (a level has fewer than 2^31 texels: no product wraps):
     // the 2x2 texels are a block in memory, and r1 is not needed.
     if (pairs && allDiffer(y0, y1, 1)) {
-      loadQuads16(texels, r0 + x0, w, p00, p10, p01, p11);
+      for (int k = 0; k < Count; ++k) loadQuads16(levels[k]->rgba8.data(), r0 + x0, w, p00[k], p10[k], p01[k], p11[k]);
     } else {
       const v16i r1 = y1 * w;
-      if (!pairs) {
-        p00 = load16(texels, r0 + x0), p10 = load16(texels, r0 + x1);
-        p01 = load16(texels, r1 + x0), p11 = load16(texels, r1 + x1);
-      } else {
-        loadPairs16(texels, r0 + x0, p00, p10);
-        loadPairs16(texels, r1 + x0, p01, p11);
+      for (int k = 0; k < Count; ++k) {
+        const uint32_t* texels = levels[k]->rgba8.data();
+        if (!pairs) {
+          p00[k] = load16(texels, r0 + x0), p10[k] = load16(texels, r0 + x1);
+          p01[k] = load16(texels, r1 + x0), p11[k] = load16(texels, r1 + x1);
+        } else {
+          loadPairs16(texels, r0 + x0, p00[k], p10[k]);
+          loadPairs16(texels, r1 + x0, p01[k], p11[k]);
+        }
       }
     }
     const v16u m = v16u{} + 0x00ff00ffu;
@@ -287,22 +309,46 @@ template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false,
     const v32h wx2 = v32h(_mm512_shuffle_epi8(__m512i(fixedX), weightBytes));
     // (p >> 8) & 0x00ff00ff is the 16-bit halves shifted right by 8 (one vpsrlw).
     const auto highBytes = [](v16u p) { return v16u(v32h(p) >> 8); };
-    const v32h topRB = rowLerp(p00 & m, p10 & m, wx2);
-    const v32h topGA = rowLerp(highBytes(p00), highBytes(p10), wx2);
-    const v32h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
-    const v32h bottomGA = rowLerp(highBytes(p01), highBytes(p11), wx2);
     const v16f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
-    if constexpr (colors) {
-      const v16i r = columnByte<0>(topRB, bottomRB, fy), g = columnByte<0>(topGA, bottomGA, fy);
-      const v16i b = columnByte<16>(topRB, bottomRB, fy), a = columnByte<16>(topGA, bottomGA, fy);
-      storeColors<Merge>(out, v16u((a << 24) | (r << 16) | (g << 8) | b), mask);
-    } else {
-      store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
-      store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
-      store<Merge>(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
-      store<Merge>(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
+    for (int k = 0; k < Count; ++k) {
+      const v32h topRB = rowLerp(p00[k] & m, p10[k] & m, wx2);
+      const v32h topGA = rowLerp(highBytes(p00[k]), highBytes(p10[k]), wx2);
+      const v32h bottomRB = rowLerp(p01[k] & m, p11[k] & m, wx2);
+      const v32h bottomGA = rowLerp(highBytes(p01[k]), highBytes(p11[k]), wx2);
+      if constexpr (colors) {
+        const v16i r = columnByte<0>(topRB, bottomRB, fy), g = columnByte<0>(topGA, bottomGA, fy);
+        const v16i b = columnByte<16>(topRB, bottomRB, fy), a = columnByte<16>(topGA, bottomGA, fy);
+        storeColors<Merge>(out[k], v16u((a << 24) | (r << 16) | (g << 8) | b), mask);
+      } else {
+        store<Merge>(out[k][0], columnLerp<0>(topRB, bottomRB, fy), mask);
+        store<Merge>(out[k][1], columnLerp<0>(topGA, bottomGA, fy), mask);
+        store<Merge>(out[k][2], columnLerp<16>(topRB, bottomRB, fy), mask);
+        store<Merge>(out[k][3], columnLerp<16>(topGA, bottomGA, fy), mask);
+      }
     }
   }
+}
+
+// One level (filterLevels). Out of line: its callers reach it by a jump, and the batch
+// classification in front of it keeps a frame without stack realignment (this one's
+// 64-byte index buffers).
+template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge = false, class Out = float (*)[kLanes]>
+[[gnu::noinline]] void filter16(const SampleLevel& lv, const float* u, const float* v,
+                                __mmask16 mask, Out out) {
+  const SampleLevel* const levels[1] = {&lv};
+  const Out outs[1] = {out};
+  filterLevels<AU, AV, Linear, Merge, Out, 1>(levels, u, v, mask, outs);
+}
+
+// Two levels of one size at the same coordinates (filterLevels): the texel fetches of
+// both are independent of each other and overlap.
+template <TextureAddress AU, TextureAddress AV, bool Linear>
+[[gnu::noinline]] void filterPair16(const SampleLevel& a, const SampleLevel& b, const float* u,
+                                    const float* v, __mmask16 mask, float (*outA)[kLanes],
+                                    float (*outB)[kLanes]) {
+  const SampleLevel* const levels[2] = {&a, &b};
+  float (*const outs[2])[kLanes] = {outA, outB};
+  filterLevels<AU, AV, Linear, false, float (*)[kLanes], 2>(levels, u, v, mask, outs);
 }
 
 template <TextureAddress AU, TextureAddress AV, bool Linear>
@@ -347,19 +393,16 @@ template <TextureAddress AU, TextureAddress AV, bool Rest, class Out = float (*)
   return true;
 }
 
+// What classifyBatch16 returns besides a key.
+constexpr int kDeclined = -2;  // some quad's ρ² is not of the form the classification reads
+constexpr int kMixed = -1;     // the quads' keys differ (they are in `keys`)
+
 // sample2DUniform's classification of the four quads at once (see there): ρ² of each
 // quad with the same operations in the same order, one lane per quad; the exponent
 // gives λ's side of 0 and the nearest level when the mantissa keeps log2 away from an
-// integer. With Rest, a batch it declines goes on to plan.rest, as a tail call (the
-// common path then calls nothing and keeps nothing across a call). Out as filter16's.
-template <TextureAddress AU, TextureAddress AV, bool Rest, class Out = float (*)[kLanes]>
-[[gnu::always_inline]] inline bool uniformBatch16(const UniformPlan& plan, const float* u,
-                                                  const float* v, const float* w,
-                                                  uint32_t mask, Out out) {
-  const auto decline = [&] {
-    if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
-    return false;
-  };
+// integer. The batch's key (level << 1 | LINEAR) when all four quads agree.
+[[gnu::always_inline]] inline int classifyBatch16(const UniformPlan& plan, const float* u, const float* v,
+                                                  __m128i& keys) {
   typedef float v4f __attribute__((vector_size(16)));
   typedef int v4i __attribute__((vector_size(16)));
   typedef uint32_t v4u __attribute__((vector_size(16)));
@@ -383,7 +426,7 @@ template <TextureAddress AU, TextureAddress AV, bool Rest, class Out = float (*)
   const v4i bits = v4i(ms), mant = bits & 0x7fffff;
   const __mmask8 normal = _mm_cmplt_epu32_mask(__m128i(bits - 0x00800000), _mm_set1_epi32(0x7f000000));
   const __mmask8 inside = _mm_cmplt_epu32_mask(__m128i(mant - 0x1000), _mm_set1_epi32(0x7ff000 - 0x1000));
-  if (__mmask8(normal & inside) != 0xf) return decline();
+  if (__mmask8(normal & inside) != 0xf) return kDeclined;
   const v4i e = v4i(v4u(bits) >> 23) - 127;
   const v4i linear = e >= 0 ? v4i{} + plan.minLinear : v4i{} + plan.magLinear;
   v4i level = (e + 1) >> 1;
@@ -391,10 +434,26 @@ template <TextureAddress AU, TextureAddress AV, bool Rest, class Out = float (*)
   level = level > plan.last ? v4i{} + plan.last : level;
   if (plan.mipNone) level = v4i{};
   const v4i k = (level << 1) | linear;  // per quad
+  keys = __m128i(k);
   const int key = k[0];
-  if (_mm_cmpeq_epi32_mask(__m128i(k), _mm_set1_epi32(key)) != 0xf) {
-    return mixedLevels16<AU, AV, Rest, Out>(plan, u, v, w, mask, __m128i(k), out);
-  }
+  return _mm_cmpeq_epi32_mask(__m128i(k), _mm_set1_epi32(key)) == 0xf ? key : kMixed;
+}
+
+// The batch sampled at the level and with the filter classifyBatch16 finds. With Rest,
+// a batch it declines goes on to plan.rest, as a tail call (the common path then calls
+// nothing and keeps nothing across a call). Out as filter16's.
+template <TextureAddress AU, TextureAddress AV, bool Rest, class Out = float (*)[kLanes]>
+[[gnu::always_inline]] inline bool uniformBatch16(const UniformPlan& plan, const float* u,
+                                                  const float* v, const float* w,
+                                                  uint32_t mask, Out out) {
+  const auto decline = [&] {
+    if constexpr (Rest) plan.rest(plan.owner, u, v, w, uint16_t(mask), out);
+    return false;
+  };
+  __m128i keys;
+  const int key = classifyBatch16(plan, u, v, keys);
+  if (key == kDeclined) return decline();
+  if (key == kMixed) return mixedLevels16<AU, AV, Rest, Out>(plan, u, v, w, mask, keys, out);
   const SampleLevel* lv = levelByCount(plan.levels, key >> 1);  // 0 <= key >> 1 <= last
   if (!lv) return decline();
   if (key & 1)
@@ -416,93 +475,121 @@ bool uniformColors16(const UniformPlan& plan, const float* u, const float* v, ui
   return uniformBatch16<AU, AV, false, uint32_t*>(plan, u, v, nullptr, mask, out);
 }
 
-template <TextureAddress AU>
-UniformColors2D uniformColorsForV(TextureAddress av) {
-  switch (av) {
-    case TextureAddress::Wrap: return uniformColors16<AU, TextureAddress::Wrap>;
-    case TextureAddress::Mirror: return uniformColors16<AU, TextureAddress::Mirror>;
-    case TextureAddress::MirrorOnce: return uniformColors16<AU, TextureAddress::MirrorOnce>;
-    default: return uniformColors16<AU, TextureAddress::Clamp>;
-  }
-}
-
 template <TextureAddress AU, TextureAddress AV>
 void implicit16(const void* context, const float* u, const float* v, const float* w,
                 uint16_t laneMask, float (*out)[kLanes]) {
   uniformBatch16<AU, AV, true>(*static_cast<const UniformPlan*>(context), u, v, w, laneMask, out);
 }
 
-template <TextureAddress AU>
-Implicit2D implicitForV(TextureAddress av) {
-  switch (av) {
-    case TextureAddress::Wrap: return implicit16<AU, TextureAddress::Wrap>;
-    case TextureAddress::Mirror: return implicit16<AU, TextureAddress::Mirror>;
-    case TextureAddress::MirrorOnce: return implicit16<AU, TextureAddress::MirrorOnce>;
-    default: return implicit16<AU, TextureAddress::Clamp>;
-  }
+// Whether two batches of coordinates are the same, bit for bit.
+inline bool sameCoordinates(const float (*a)[kLanes], const float (*b)[kLanes]) {
+  if (a == b) return true;
+  const __mmask16 u = _mm512_cmpeq_epi32_mask(_mm512_loadu_si512(a[0]), _mm512_loadu_si512(b[0]));
+  const __mmask16 v = _mm512_cmpeq_epi32_mask(_mm512_loadu_si512(a[1]), _mm512_loadu_si512(b[1]));
+  return __mmask16(u & v) == 0xffff;
 }
 
-template <TextureAddress AU>
-Uniform2D uniformForV(TextureAddress av) {
-  switch (av) {
-    case TextureAddress::Wrap: return uniform16<AU, TextureAddress::Wrap>;
-    case TextureAddress::Mirror: return uniform16<AU, TextureAddress::Mirror>;
-    case TextureAddress::MirrorOnce: return uniform16<AU, TextureAddress::MirrorOnce>;
-    default: return uniform16<AU, TextureAddress::Clamp>;
-  }
+// Whether classifyBatch16 gives both plans the same key for every batch.
+inline bool sameClassification(const UniformPlan& a, const UniformPlan& b) {
+  return a.size[0] == b.size[0] && a.size[1] == b.size[1] && a.first == b.first && a.last == b.last &&
+         a.minLinear == b.minLinear && a.magLinear == b.magLinear && a.mipNone == b.mipNone;
 }
 
+// Two implicit16 calls in one (ImplicitPair2D): where both read the same coordinates
+// and classify them alike, and the level has one size in both textures, filterPair16
+// samples both; otherwise each plan samples on its own.
 template <TextureAddress AU, TextureAddress AV>
-constexpr Kernel2D kernelPair(bool linear) {
-  return linear ? kernel2D16<AU, AV, true> : kernel2D16<AU, AV, false>;
+void implicitPair16(const void* contextA, const void* contextB, const float (*coordsA)[kLanes],
+                    const float (*coordsB)[kLanes], uint16_t laneMask, float (*outA)[kLanes],
+                    float (*outB)[kLanes]) {
+  const UniformPlan& a = *static_cast<const UniformPlan*>(contextA);
+  const UniformPlan& b = *static_cast<const UniformPlan*>(contextB);
+  if (sameCoordinates(coordsA, coordsB) && sameClassification(a, b)) {
+    const float *u = coordsA[0], *v = coordsA[1];
+    __m128i keys;
+    const int key = classifyBatch16(a, u, v, keys);
+    if (key >= 0) {
+      const SampleLevel* la = levelByCount(a.levels, key >> 1);
+      const SampleLevel* lb = levelByCount(b.levels, key >> 1);
+      if (la && lb && la->width == lb->width && la->height == lb->height) {
+        if (key & 1)
+          filterPair16<AU, AV, true>(*la, *lb, u, v, __mmask16(laneMask), outA, outB);
+        else
+          filterPair16<AU, AV, false>(*la, *lb, u, v, __mmask16(laneMask), outA, outB);
+        return;
+      }
+    }
+  }
+  implicit16<AU, AV>(&a, coordsA[0], coordsA[1], coordsA[2], laneMask, outA);
+  implicit16<AU, AV>(&b, coordsB[0], coordsB[1], coordsB[2], laneMask, outB);
 }
 
-template <TextureAddress AU>
-constexpr Kernel2D kernelForV(TextureAddress av, bool linear) {
+// The kernels of each addressing pair, one entry per kind (Entry<AU, AV>::get(args)
+// gives the instance), and the run-time choice among them.
+template <TextureAddress AU, TextureAddress AV>
+struct UniformEntry {
+  static constexpr Uniform2D get() { return uniform16<AU, AV>; }
+};
+template <TextureAddress AU, TextureAddress AV>
+struct UniformColorsEntry {
+  static constexpr UniformColors2D get() { return uniformColors16<AU, AV>; }
+};
+template <TextureAddress AU, TextureAddress AV>
+struct ImplicitEntry {
+  static constexpr Implicit2D get() { return implicit16<AU, AV>; }
+};
+template <TextureAddress AU, TextureAddress AV>
+struct ImplicitPairEntry {
+  static constexpr ImplicitPair2D get() { return implicitPair16<AU, AV>; }
+};
+template <TextureAddress AU, TextureAddress AV>
+struct KernelEntry {
+  static constexpr Kernel2D get(bool linear) {
+    return linear ? kernel2D16<AU, AV, true> : kernel2D16<AU, AV, false>;
+  }
+};
+
+template <template <TextureAddress, TextureAddress> class Entry, TextureAddress AU, class... Args>
+constexpr auto forAddressV(TextureAddress av, Args... args) {
   switch (av) {
-    case TextureAddress::Wrap: return kernelPair<AU, TextureAddress::Wrap>(linear);
-    case TextureAddress::Mirror: return kernelPair<AU, TextureAddress::Mirror>(linear);
-    case TextureAddress::MirrorOnce: return kernelPair<AU, TextureAddress::MirrorOnce>(linear);
-    default: return kernelPair<AU, TextureAddress::Clamp>(linear);
+    case TextureAddress::Wrap: return Entry<AU, TextureAddress::Wrap>::get(args...);
+    case TextureAddress::Mirror: return Entry<AU, TextureAddress::Mirror>::get(args...);
+    case TextureAddress::MirrorOnce: return Entry<AU, TextureAddress::MirrorOnce>::get(args...);
+    default: return Entry<AU, TextureAddress::Clamp>::get(args...);
+  }
+}
+
+// BORDER never reaches the kernels; any other value is CLAMP (validAddress of sampler.cpp).
+template <template <TextureAddress, TextureAddress> class Entry, class... Args>
+constexpr auto forAddressing(TextureAddress au, TextureAddress av, Args... args) {
+  switch (au) {
+    case TextureAddress::Wrap: return forAddressV<Entry, TextureAddress::Wrap>(av, args...);
+    case TextureAddress::Mirror: return forAddressV<Entry, TextureAddress::Mirror>(av, args...);
+    case TextureAddress::MirrorOnce: return forAddressV<Entry, TextureAddress::MirrorOnce>(av, args...);
+    default: return forAddressV<Entry, TextureAddress::Clamp>(av, args...);
   }
 }
 
 }  // namespace
 
 Uniform2D selectUniform2DAvx512(TextureAddress au, TextureAddress av) {
-  switch (au) {
-    case TextureAddress::Wrap: return uniformForV<TextureAddress::Wrap>(av);
-    case TextureAddress::Mirror: return uniformForV<TextureAddress::Mirror>(av);
-    case TextureAddress::MirrorOnce: return uniformForV<TextureAddress::MirrorOnce>(av);
-    default: return uniformForV<TextureAddress::Clamp>(av);
-  }
+  return forAddressing<UniformEntry>(au, av);
 }
 
 UniformColors2D selectUniformColors2DAvx512(TextureAddress au, TextureAddress av) {
-  switch (au) {
-    case TextureAddress::Wrap: return uniformColorsForV<TextureAddress::Wrap>(av);
-    case TextureAddress::Mirror: return uniformColorsForV<TextureAddress::Mirror>(av);
-    case TextureAddress::MirrorOnce: return uniformColorsForV<TextureAddress::MirrorOnce>(av);
-    default: return uniformColorsForV<TextureAddress::Clamp>(av);
-  }
+  return forAddressing<UniformColorsEntry>(au, av);
 }
 
 Implicit2D selectImplicit2DAvx512(TextureAddress au, TextureAddress av) {
-  switch (au) {
-    case TextureAddress::Wrap: return implicitForV<TextureAddress::Wrap>(av);
-    case TextureAddress::Mirror: return implicitForV<TextureAddress::Mirror>(av);
-    case TextureAddress::MirrorOnce: return implicitForV<TextureAddress::MirrorOnce>(av);
-    default: return implicitForV<TextureAddress::Clamp>(av);
-  }
+  return forAddressing<ImplicitEntry>(au, av);
+}
+
+ImplicitPair2D selectImplicitPair2DAvx512(TextureAddress au, TextureAddress av) {
+  return forAddressing<ImplicitPairEntry>(au, av);
 }
 
 Kernel2D selectKernel2DAvx512(TextureAddress au, TextureAddress av, bool linear) {
-  switch (au) {
-    case TextureAddress::Wrap: return kernelForV<TextureAddress::Wrap>(av, linear);
-    case TextureAddress::Mirror: return kernelForV<TextureAddress::Mirror>(av, linear);
-    case TextureAddress::MirrorOnce: return kernelForV<TextureAddress::MirrorOnce>(av, linear);
-    default: return kernelForV<TextureAddress::Clamp>(av, linear);
-  }
+  return forAddressing<KernelEntry>(au, av, linear);
 }
 
 }  // namespace refx::resource

@@ -53,6 +53,9 @@ UniformColors2D selectUniformColors2DAvx512(TextureAddress au, TextureAddress av
 using Implicit2D = void (*)(const void* plan, const float* u, const float* v, const float* w,
                             uint16_t laneMask, float (*out)[kBatchLanes]);
 Implicit2D selectImplicit2DAvx512(TextureAddress au, TextureAddress av);
+// Two Implicit2D calls of the same variant in one (PreparedSampler::ImplicitPairFn).
+using ImplicitPair2D = PreparedSampler::ImplicitPairFn;
+ImplicitPair2D selectImplicitPair2DAvx512(TextureAddress au, TextureAddress av);
 
 namespace kernels {
 

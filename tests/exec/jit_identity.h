@@ -35,6 +35,20 @@ inline void fakeSample(const void* context, SampleMode mode, const float (*co)[k
     }
 }
 
+// SamplerBinding::samplePair as its contract has it: a's lookup, then b's.
+inline void fakeSamplePair(const void* a, const void* b, const float (*coordsA)[kBatchLanes],
+                           const float (*coordsB)[kBatchLanes], uint16_t laneMask, float (*outA)[kBatchLanes],
+                           float (*outB)[kBatchLanes]) {
+  fakeSample(a, SampleMode::Implicit, coordsA, laneMask, outA);
+  fakeSample(b, SampleMode::Implicit, coordsB, laneMask, outB);
+}
+// A pair function no other binding has (pairs with it alone: the two lookups apart).
+inline void otherSamplePair(const void* a, const void* b, const float (*coordsA)[kBatchLanes],
+                            const float (*coordsB)[kBatchLanes], uint16_t laneMask, float (*outA)[kBatchLanes],
+                            float (*outB)[kBatchLanes]) {
+  fakeSamplePair(a, b, coordsA, coordsB, laneMask, outA, outB);
+}
+
 // Both results bit-identical, except that any NaN equals any NaN: when both operands
 // of an op are NaN, which payload wins follows the operand order the C++ compiler
 // picked for the interpreter.
@@ -117,9 +131,14 @@ inline Outcome compare(const Program& program, PrepareOptions::Isa isa, uint32_t
   std::array<bool, 16> bools{};
   for (auto& b : bools) b = rng() & 1;
   std::array<SamplerBinding, kSamplerCount> samplers{};
-  for (int s = 0; s < kSamplerCount; ++s)
-    samplers[size_t(s)] = SamplerBinding{reinterpret_cast<const void*>(uintptr_t(s)),
-                                         s < boundSamplers || s % 2 == 0 ? fakeSample : nullptr};
+  for (int s = 0; s < kSamplerCount; ++s) {
+    SamplerBinding& b = samplers[size_t(s)];
+    b.context = b.pairContext = reinterpret_cast<const void*>(uintptr_t(s));
+    b.sample = s < boundSamplers || s % 2 == 0 ? fakeSample : nullptr;
+    // Bound samplers but the last pair with each other (two implicit lookups in a row
+    // may become one call); the last has a pair function of its own.
+    if (b.sample) b.samplePair = s + 1 < kSamplerCount ? fakeSamplePair : otherSamplePair;
+  }
   ExecContext ctx;
   ctx.constants = constants.data();
   ctx.constantCount = int(constants.size());

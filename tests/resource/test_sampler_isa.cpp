@@ -300,6 +300,67 @@ TEST(SamplerIsaVariants, ImplicitKernelMatchesTheReference) {
   EXPECT_EQ(PreparedSampler(*cube, SamplerState{}).implicitKernel().fn, nullptr);
 }
 
+// PreparedSampler::implicitPair: two samplers' lookups in one call give what the
+// reference gives for each, where they share coordinates (the same rows, or equal ones)
+// and sizes (when the addresses are computed once) and where they do not: other
+// coordinates, other sizes, other filters or mip filters, masks, batches of mixed or
+// declined levels. It exists where the AVX-512 batch kernel does, the same function for
+// the same addressing pair.
+TEST(SamplerIsaVariants, ImplicitPairGivesWhatEachSamplerGives) {
+  const CpuIsa previous = activeIsa();
+  if (detectedIsa() != CpuIsa::Avx512) GTEST_SKIP() << "the pair exists in the AVX-512 kernel only";
+  setActiveIsa(CpuIsa::Avx512);
+  std::mt19937 rng(23);
+  const int sizes[][2] = {{1, 1}, {17, 5}, {64, 64}, {256, 128}};
+  int shared = 0, apart = 0;
+  for (const auto& sa : sizes) {
+    for (const auto& sb : sizes) {
+      const auto texA = randomTexture(sa[0], sa[1], 0, uint32_t(sa[0] * 5 + sa[1]));
+      const auto texB = randomTexture(sb[0], sb[1], 0, uint32_t(sb[0] * 11 + sb[1] + 1));
+      for (int iter = 0; iter < 300; ++iter) {
+        SamplerState a;
+        a.addressU = kModes[rng() % 4], a.addressV = kModes[rng() % 4];
+        a.magFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+        a.minFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+        a.mipFilter = TextureFilter(rng() % 2);  // NONE, POINT: the batch kernel's
+        SamplerState b = a;
+        if (iter % 5 == 1) b.magFilter = rng() % 2 ? TextureFilter::Point : TextureFilter::Linear;
+        if (iter % 7 == 2) b.mipFilter = TextureFilter(rng() % 2);
+        const PreparedSampler pa(*texA, a), pb(*texB, b);
+        // none where one level and filter serve every λ (no batch kernel needed)
+        if (!pa.implicitPair() || !pb.implicitPair()) continue;
+        ASSERT_EQ(pa.implicitPair(), pb.implicitPair());
+        alignas(64) float ca[3][N] = {}, cb[3][N] = {};
+        fillCoords(rng, iter % 4, sa[0], sa[1], ca[0], ca[1]);
+        // b at the same rows, at equal rows elsewhere, or at other coordinates
+        const int where = iter % 3;
+        if (where == 1) std::memcpy(cb, ca, sizeof cb);
+        if (where == 2) fillCoords(rng, iter % 4, sb[0], sb[1], cb[0], cb[1]);
+        const float (*coordsB)[N] = where == 0 ? ca : cb;
+        const uint16_t mask = iter % 3 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+        float expectedA[4][N], expectedB[4][N], gotA[4][N], gotB[4][N];
+        SampleRequest req;
+        req.laneMask = mask;
+        req.u = ca[0], req.v = ca[1];
+        sampleTextureReference(*texA, a, req, expectedA);
+        req.u = coordsB[0], req.v = coordsB[1];
+        sampleTextureReference(*texB, b, req, expectedB);
+        std::memset(gotA, 0xcd, sizeof gotA), std::memset(gotB, 0xcd, sizeof gotB);
+        pa.implicitPair()(pa.implicitKernel().context, pb.implicitKernel().context, ca, coordsB, mask, gotA,
+                          gotB);
+        ASSERT_EQ(std::memcmp(expectedA, gotA, sizeof gotA), 0)
+            << sa[0] << "x" << sa[1] << " and " << sb[0] << "x" << sb[1] << " iter " << iter;
+        ASSERT_EQ(std::memcmp(expectedB, gotB, sizeof gotB), 0)
+            << sa[0] << "x" << sa[1] << " and " << sb[0] << "x" << sb[1] << " iter " << iter;
+        (where < 2 && sa[0] == sb[0] && sa[1] == sb[1] ? shared : apart) += 1;
+      }
+    }
+  }
+  setActiveIsa(previous);
+  EXPECT_GT(shared, 500);
+  EXPECT_GT(apart, 2400);
+}
+
 // sampleImplicitArgb8 gives the 8-bit unorms of sampleImplicit's channels as D3DCOLORs
 // (unorm8 of core/color.h: what the output merger stores), on every lane in the mask,
 // wherever it samples at all (the AVX-512 batch kernel's states: mip filter NONE or

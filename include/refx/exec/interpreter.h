@@ -27,6 +27,14 @@ struct SamplerBinding {
   const void* context = nullptr;
   void (*sample)(const void* context, SampleMode mode, const float (*coords)[kBatchLanes],
                  uint16_t laneMask, float (*out)[kBatchLanes]) = nullptr;
+  // Optional: two Implicit lookups in one call. Where bindings a and b have the same
+  // non-null samplePair, samplePair(a.pairContext, b.pairContext, coordsA, coordsB,
+  // laneMask, outA, outB) gives what a.sample(Implicit, coordsA, ...) followed by
+  // b.sample(Implicit, coordsB, ...) gives, when outA is not one of coordsB's rows.
+  void (*samplePair)(const void* a, const void* b, const float (*coordsA)[kBatchLanes],
+                     const float (*coordsB)[kBatchLanes], uint16_t laneMask, float (*outA)[kBatchLanes],
+                     float (*outB)[kBatchLanes]) = nullptr;
+  const void* pairContext = nullptr;
 };
 
 struct ExecContext {

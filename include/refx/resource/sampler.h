@@ -87,12 +87,23 @@ class PreparedSampler {
     const void* context = nullptr;
   };
   const ImplicitKernel& implicitKernel() const { return implicit_; }
+  // The implicit lookups of two samplers in one call: for two PreparedSamplers with the
+  // same non-null implicitPair(), pair(a.implicitKernel().context,
+  // b.implicitKernel().context, coordsA, coordsB, laneMask, outA, outB) gives what their
+  // two implicitKernel() calls give (coords: the rows u, v, w). Where both read the same
+  // coordinates and their textures have one size, the texel addresses and weights are
+  // computed once and the fetches of both overlap.
+  using ImplicitPairFn = void (*)(const void* a, const void* b, const float (*coordsA)[kBatchLanes],
+                                  const float (*coordsB)[kBatchLanes], uint16_t laneMask,
+                                  float (*outA)[kBatchLanes], float (*outB)[kBatchLanes]);
+  ImplicitPairFn implicitPair() const { return pair_; }
 
  private:
   const Texture* tex_;
   SamplerState state_;
   std::shared_ptr<const void> plan_;  // one-level 2D plan when the state allows it
   ImplicitKernel implicit_;
+  ImplicitPairFn pair_ = nullptr;
 };
 
 // Cube face selection: face index (D3DCUBEMAP_FACES) and (u,v) in [0,1] on that face.

@@ -101,7 +101,14 @@ class Generator {
     if (named[int(RegFile::Output)]) outputs_ = load(offsetof(JitFrame, outputs));
     if (named[int(RegFile::Const)]) constants_ = load(offsetof(JitFrame, constants));
     if (named[int(RegFile::Imm)] || named[int(RegFile::Const)]) immediates_ = load(offsetof(JitFrame, immediates));
-    for (size_t i = begin_; i < end_; ++i) emitInstruction(uint32_t(i));
+    for (size_t i = begin_; i < end_; ++i) {
+      if (i + 1 < end_ && pairable(program_.code[i], program_.code[i + 1])) {
+        emitTexPair(uint32_t(i), uint32_t(i + 1));
+        ++i;
+      } else {
+        emitInstruction(uint32_t(i));
+      }
+    }
     cc_.endFunc();
   }
 
@@ -302,21 +309,101 @@ class Generator {
   // four components go unmodified to a register that is not a source, else through a
   // buffer with the result modifiers. An unbound sampler takes the interpreter's
   // routine (which returns D3D's (0,0,0,1)).
+  static bool coordsInPlace(const Instr& in) {
+    const Src& coord = in.src[0];
+    return (in.op == Op::Tex || in.op == Op::TexBias || in.op == Op::TexLod) && isLaneFile(coord.file) &&
+           coord.swizzle == kSwzXYZW && coord.mod == SrcMod::None;
+  }
+  static bool resultInPlace(const Instr& in) {
+    bool alias = false;
+    for (int i = 0; i < sourceCount(in.op); ++i)
+      alias |= in.src[i].file == in.dst.file && in.src[i].index == in.dst.index;
+    return in.dst.mask == 0xF && in.shift == 0 && !in.saturate && !in.clamp && !in.quantize && !alias;
+  }
+  static bool sameRegister(const Src& s, const Dst& d) { return s.file == d.file && s.index == d.index; }
+
+  // Two implicit lookups in a row that one samplePair call can make: both read their
+  // coordinates and write all of their result in place, and the first one's result is
+  // neither what the second reads nor where the second writes.
+  bool pairable(const Instr& a, const Instr& b) const {
+    return a.op == Op::Tex && b.op == Op::Tex && sampledDirectly(a) && sampledDirectly(b) && coordsInPlace(a) &&
+           coordsInPlace(b) && resultInPlace(a) && resultInPlace(b) && !sameRegister(b.src[0], a.dst) &&
+           !(a.dst.file == b.dst.file && a.dst.index == b.dst.index);
+  }
+
+  // The lanes a lookup produces: all four of every 2x2 quad with a live lane (quadLanes()).
+  x86::Gp quadLanes() {
+    x86::Gp lanes = cc_.newUInt32(), t = cc_.newUInt32();
+    x86::Gp mask = load(offsetof(JitFrame, laneMask));
+    cc_.movzx(lanes, x86::word_ptr(mask));
+    cc_.mov(t, lanes), cc_.shr(t, 1), cc_.or_(lanes, t);
+    cc_.mov(t, lanes), cc_.shr(t, 2), cc_.or_(lanes, t);
+    cc_.and_(lanes, 0x1111);
+    cc_.imul(lanes, lanes, 15);
+    return lanes;
+  }
+
+  // A pairable a, b: one samplePair call where both bindings have the same one,
+  // else the two lookups as emitTex makes them.
+  void emitTexPair(uint32_t ia, uint32_t ib) {
+    const Instr& a = program_.code[ia];
+    const Instr& b = program_.code[ib];
+    forget();
+    Label separate = cc_.newLabel(), done = cc_.newLabel();
+    x86::Gp ctx = load(offsetof(JitFrame, ctx));
+    x86::Gp count = cc_.newInt32();
+    cc_.mov(count, x86::dword_ptr(ctx, int32_t(offsetof(ExecContext, samplerCount))));
+    cc_.cmp(count, std::max(a.sampler, b.sampler));
+    cc_.jle(separate);
+    x86::Gp binding = cc_.newIntPtr();
+    cc_.mov(binding, x86::ptr(ctx, int32_t(offsetof(ExecContext, samplers))));
+    const int32_t atA = int32_t(a.sampler * sizeof(SamplerBinding)), atB = int32_t(b.sampler * sizeof(SamplerBinding));
+    const int32_t pairFn = int32_t(offsetof(SamplerBinding, samplePair));
+    const int32_t pairContext = int32_t(offsetof(SamplerBinding, pairContext));
+    x86::Gp fn = cc_.newIntPtr();
+    cc_.mov(fn, x86::ptr(binding, atA + pairFn));
+    cc_.test(fn, fn);
+    cc_.jz(separate);
+    cc_.cmp(fn, x86::ptr(binding, atB + pairFn));
+    cc_.jne(separate);
+    x86::Gp contextA = cc_.newIntPtr(), contextB = cc_.newIntPtr();
+    cc_.mov(contextA, x86::ptr(binding, atA + pairContext));
+    cc_.mov(contextB, x86::ptr(binding, atB + pairContext));
+    x86::Gp coordsA = cc_.newIntPtr(), coordsB = cc_.newIntPtr(), outA = cc_.newIntPtr(), outB = cc_.newIntPtr();
+    cc_.lea(coordsA, lane(a.src[0].file, a.src[0].index, 0, 0));
+    cc_.lea(coordsB, lane(b.src[0].file, b.src[0].index, 0, 0));
+    cc_.lea(outA, lane(a.dst.file, a.dst.index, 0, 0));
+    cc_.lea(outB, lane(b.dst.file, b.dst.index, 0, 0));
+    const x86::Gp lanes = quadLanes();
+    InvokeNode* call;
+    cc_.invoke(&call, fn,
+               FuncSignatureT<void, const void*, const void*, const void*, const void*, uint16_t, void*, void*>(
+                   CallConvId::kHost));
+    call->setArg(0, contextA);
+    call->setArg(1, contextB);
+    call->setArg(2, coordsA);
+    call->setArg(3, coordsB);
+    call->setArg(4, lanes);
+    call->setArg(5, outA);
+    call->setArg(6, outB);
+    cc_.jmp(done);
+    cc_.bind(separate);
+    emitTex(ia);
+    emitTex(ib);
+    cc_.bind(done);
+    forget();  // values of one branch are not defined after the join
+  }
+
   void emitTex(uint32_t index) {
     const Instr& in = program_.code[index];
     ++out_.inlineInstructions;
     affine_ = false;  // the interpreter reads texture operands through applySourceModifier
     const Src& coord = in.src[0];
-    bool alias = false;
-    for (int i = 0; i < sourceCount(in.op); ++i) {
+    for (int i = 0; i < sourceCount(in.op); ++i)
       if (isLaneFile(in.src[i].file)) use(in.src[i].file, in.src[i].index);
-      alias |= in.src[i].file == in.dst.file && in.src[i].index == in.dst.index;
-    }
     use(in.dst.file, in.dst.index);
-    const bool coordsInPlace = (in.op == Op::Tex || in.op == Op::TexBias || in.op == Op::TexLod) &&
-                               isLaneFile(coord.file) && coord.swizzle == kSwzXYZW && coord.mod == SrcMod::None;
-    const bool resultInPlace = in.dst.mask == 0xF && in.shift == 0 && !in.saturate && !in.clamp && !in.quantize &&
-                               !alias;
+    const bool coordsInPlace = this->coordsInPlace(in);
+    const bool resultInPlace = this->resultInPlace(in);
     forget();
     Label unbound = cc_.newLabel(), done = cc_.newLabel();
     x86::Gp ctx = load(offsetof(JitFrame, ctx));
@@ -353,14 +440,7 @@ class Generator {
     else cc_.lea(out, result);
     x86::Gp context = cc_.newIntPtr();
     cc_.mov(context, x86::ptr(binding, at + int32_t(offsetof(SamplerBinding, context))));
-    // Lanes to produce: all four of every 2x2 quad with a live lane (quadLanes()).
-    x86::Gp lanes = cc_.newUInt32(), t = cc_.newUInt32();
-    x86::Gp mask = load(offsetof(JitFrame, laneMask));
-    cc_.movzx(lanes, x86::word_ptr(mask));
-    cc_.mov(t, lanes), cc_.shr(t, 1), cc_.or_(lanes, t);
-    cc_.mov(t, lanes), cc_.shr(t, 2), cc_.or_(lanes, t);
-    cc_.and_(lanes, 0x1111);
-    cc_.imul(lanes, lanes, 15);
+    const x86::Gp lanes = quadLanes();
     const SampleMode mode = in.op == Op::TexBias  ? SampleMode::Bias
                             : in.op == Op::TexLod  ? SampleMode::Lod
                             : in.op == Op::TexGrad ? SampleMode::Grad
