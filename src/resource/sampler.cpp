@@ -1369,6 +1369,9 @@ struct PreparedPlan {
   resource::Uniform2D uniform = nullptr;
   resource::Implicit2D implicit = nullptr;
   resource::ImplicitPair2D implicitPair = nullptr;  // two `implicit` calls in one
+  resource::ImplicitGroup2D implicitGroup = nullptr;  // `implicit` for a group of batches
+  resource::ImplicitPairGroup2D implicitPairGroup = nullptr;
+  resource::UniformColorsGroup2D uniformColorsGroup = nullptr;
   resource::UniformColors2D uniformColors = nullptr;  // `uniform` as 8-bit unorm D3DCOLORs
   resource::UniformPlan uniformPlan{};
 
@@ -1390,6 +1393,9 @@ struct PreparedPlan {
       uniform = resource::selectUniform2DAvx512(addr[0], addr[1]);
       implicit = resource::selectImplicit2DAvx512(addr[0], addr[1]);
       implicitPair = resource::selectImplicitPair2DAvx512(addr[0], addr[1]);
+      implicitGroup = resource::selectImplicitGroup2DAvx512(addr[0], addr[1]);
+      implicitPairGroup = resource::selectImplicitPairGroup2DAvx512(addr[0], addr[1]);
+      uniformColorsGroup = resource::selectUniformColorsGroup2DAvx512(addr[0], addr[1]);
       uniformColors = resource::selectUniformColors2DAvx512(addr[0], addr[1]);
       uniformPlan = {{fast.size[0], fast.size[1]}, fast.first, fast.last, fast.minLinear,
                      fast.magLinear, fast.mipNone, levels.data(), sampleImplicitRest, this};
@@ -1416,6 +1422,8 @@ PreparedSampler::PreparedSampler(const Texture& tex, const SamplerState& state)
     implicit_ = plan->implicit ? ImplicitKernel{plan->implicit, &plan->uniformPlan}
                                : ImplicitKernel{PreparedPlan::sampleImplicitRest, plan.get()};
     pair_ = plan->implicitPair;
+    group_ = plan->implicitGroup;
+    pairGroup_ = plan->implicitPairGroup;
     plan_ = std::move(plan);
   }
 }
@@ -1478,6 +1486,36 @@ bool PreparedSampler::sampleImplicitArgb8(const float* u, const float* v, uint16
                                           uint32_t out[kBatchLanes]) const {
   const auto* p = static_cast<const PreparedPlan*>(plan_.get());
   return p && p->uniformColors && p->uniformColors(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out);
+}
+
+void PreparedSampler::sampleImplicitGroup(int count, const uint16_t* laneMasks, const SampleBatch* batches) const {
+  if (group_) {
+    group_(implicit_.context, count, laneMasks, batches);
+    return;
+  }
+  for (int g = 0; g < count; ++g)
+    sampleImplicit(batches[g].coords[0], batches[g].coords[1], batches[g].coords[2], laneMasks[g], batches[g].out);
+}
+
+void PreparedSampler::sampleImplicitPairGroup(const PreparedSampler& a, const PreparedSampler& b, int count,
+                                              const uint16_t* laneMasks, const SampleBatch* batchesA,
+                                              const SampleBatch* batchesB) {
+  if (a.pairGroup_ && a.pairGroup_ == b.pairGroup_) {
+    a.pairGroup_(a.implicit_.context, b.implicit_.context, count, laneMasks, batchesA, batchesB);
+    return;
+  }
+  a.sampleImplicitGroup(count, laneMasks, batchesA);
+  b.sampleImplicitGroup(count, laneMasks, batchesB);
+}
+
+uint32_t PreparedSampler::sampleImplicitArgb8Group(int count, const float* const* u, const float* const* v,
+                                                   const uint16_t* laneMasks, uint32_t* const* out) const {
+  const auto* p = static_cast<const PreparedPlan*>(plan_.get());
+  if (p && p->uniformColorsGroup) return p->uniformColorsGroup(p->uniformPlan, count, u, v, laneMasks, out);
+  uint32_t done = 0;
+  for (int g = 0; g < count; ++g)
+    if (sampleImplicitArgb8(u[g], v[g], laneMasks[g], out[g])) done |= 1u << g;
+  return done;
 }
 
 Kernel2D resource::selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa) {

@@ -259,6 +259,38 @@ inline v16i columnByte(v32h top, v32h bottom, v16f wy) {
   return v16i(_mm512_cvttps_epi32(__m512(fmadd(x, splat(1.0f / 256.0f), splat(0.5f)))));
 }
 
+// LINEAR's weights: the horizontal one (low byte of fixedX) in both 16-bit halves of
+// each lane (rowLerp's wx), by one vpshufb, and the vertical one as a float.
+inline void linearWeights(v16i fixedX, v16i fixedY, v32h& wx2, v16f& fy) {
+  const __m512i weightBytes = _mm512_set4_epi32(0xff0cff0c, 0xff08ff08, 0xff04ff04, 0xff00ff00);
+  wx2 = v32h(_mm512_shuffle_epi8(__m512i(fixedX), weightBytes));
+  fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
+}
+
+// The bilinear result of 2x2 texels (p00 p10 the top row, p01 p11 the bottom one) with
+// linearWeights' wx2 and fy, stored into `out` (Out: see filterLevels).
+template <bool Merge, class Out>
+[[gnu::always_inline]] inline void blendTexels(v16u p00, v16u p10, v16u p01, v16u p11, v32h wx2, v16f fy,
+                                               __mmask16 mask, Out out) {
+  const v16u m = v16u{} + 0x00ff00ffu;
+  // (p >> 8) & 0x00ff00ff is the 16-bit halves shifted right by 8 (one vpsrlw).
+  const auto highBytes = [](v16u p) { return v16u(v32h(p) >> 8); };
+  const v32h topRB = rowLerp(p00 & m, p10 & m, wx2);
+  const v32h topGA = rowLerp(highBytes(p00), highBytes(p10), wx2);
+  const v32h bottomRB = rowLerp(p01 & m, p11 & m, wx2);
+  const v32h bottomGA = rowLerp(highBytes(p01), highBytes(p11), wx2);
+  if constexpr (std::is_same_v<Out, uint32_t*>) {
+    const v16i r = columnByte<0>(topRB, bottomRB, fy), g = columnByte<0>(topGA, bottomGA, fy);
+    const v16i b = columnByte<16>(topRB, bottomRB, fy), a = columnByte<16>(topGA, bottomGA, fy);
+    storeColors<Merge>(out, v16u((a << 24) | (r << 16) | (g << 8) | b), mask);
+  } else {
+    store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
+    store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
+    store<Merge>(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
+    store<Merge>(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
+  }
+}
+
 // The texels of `count` levels of one size at the same positions, addresses and
 // weights computed once: level k's result into out[k]. Out: float (*)[kLanes] (the
 // channels as the shader sees them) or uint32_t* (their 8-bit unorms as D3DCOLORs,
@@ -303,29 +335,10 @@ template <TextureAddress AU, TextureAddress AV, bool Linear, bool Merge, class O
         }
       }
     }
-    const v16u m = v16u{} + 0x00ff00ffu;
-    // The weight (low byte of fixedX) in both 16-bit halves of each lane, by one vpshufb.
-    const __m512i weightBytes = _mm512_set4_epi32(0xff0cff0c, 0xff08ff08, 0xff04ff04, 0xff00ff00);
-    const v32h wx2 = v32h(_mm512_shuffle_epi8(__m512i(fixedX), weightBytes));
-    // (p >> 8) & 0x00ff00ff is the 16-bit halves shifted right by 8 (one vpsrlw).
-    const auto highBytes = [](v16u p) { return v16u(v32h(p) >> 8); };
-    const v16f fy = toFloat(fixedY & ((1 << kWeightBits) - 1)) * kWeightUnit;
-    for (int k = 0; k < Count; ++k) {
-      const v32h topRB = rowLerp(p00[k] & m, p10[k] & m, wx2);
-      const v32h topGA = rowLerp(highBytes(p00[k]), highBytes(p10[k]), wx2);
-      const v32h bottomRB = rowLerp(p01[k] & m, p11[k] & m, wx2);
-      const v32h bottomGA = rowLerp(highBytes(p01[k]), highBytes(p11[k]), wx2);
-      if constexpr (colors) {
-        const v16i r = columnByte<0>(topRB, bottomRB, fy), g = columnByte<0>(topGA, bottomGA, fy);
-        const v16i b = columnByte<16>(topRB, bottomRB, fy), a = columnByte<16>(topGA, bottomGA, fy);
-        storeColors<Merge>(out[k], v16u((a << 24) | (r << 16) | (g << 8) | b), mask);
-      } else {
-        store<Merge>(out[k][0], columnLerp<0>(topRB, bottomRB, fy), mask);
-        store<Merge>(out[k][1], columnLerp<0>(topGA, bottomGA, fy), mask);
-        store<Merge>(out[k][2], columnLerp<16>(topRB, bottomRB, fy), mask);
-        store<Merge>(out[k][3], columnLerp<16>(topGA, bottomGA, fy), mask);
-      }
-    }
+    v32h wx2;
+    v16f fy;
+    linearWeights(fixedX, fixedY, wx2, fy);
+    for (int k = 0; k < Count; ++k) blendTexels<Merge>(p00[k], p10[k], p01[k], p11[k], wx2, fy, mask, out[k]);
   }
 }
 
@@ -524,6 +537,138 @@ void implicitPair16(const void* contextA, const void* contextB, const float (*co
   implicit16<AU, AV>(&b, coordsB[0], coordsB[1], coordsB[2], laneMask, outB);
 }
 
+// A batch of a group (sampleGroup16): its coordinate rows and where its result goes.
+template <class Out>
+struct GroupBatch {
+  const float *u, *v, *w;
+  Out out;
+};
+
+// Up to kMaxSampleGroup batches of LINEAR footprints sampled phase by phase rather than
+// one after the other: the classification of all, then their addresses and weights,
+// their texel fetches, their filtering. Each batch's work is a long dependency chain;
+// side by side, the chains of different batches overlap. The operations per batch are
+// filterLevels' own, in the same order. With T = 2 both plans' textures are sampled at
+// the first one's coordinates (the caller made sure each batch has the same ones for
+// both, and that the plans classify alike). Returns the batches sampled (bit g: batch
+// g); the others (declined or mixed classification, POINT, a footprint whose 2x2
+// texels are not a block in memory, levels of different sizes) are left untouched.
+template <TextureAddress AU, TextureAddress AV, int T, class Out>
+[[gnu::noinline]] uint32_t sampleGroup16(const UniformPlan* const (&plans)[T], int count, const uint16_t* masks,
+                                         const GroupBatch<Out>* const (&batches)[T]) {
+  int slot[kMaxSampleGroup];  // the batches still in the group
+  const SampleLevel* levels[kMaxSampleGroup][T];
+  int n = 0;
+  for (int g = 0; g < count; ++g) {
+    __m128i keys;
+    const int key = classifyBatch16(*plans[0], batches[0][g].u, batches[0][g].v, keys);
+    if (key < 0 || !(key & 1)) continue;
+    bool ok = true;
+    for (int t = 0; t < T; ++t) {
+      levels[n][t] = levelByCount(plans[t]->levels, key >> 1);
+      ok = ok && levels[n][t] && levels[n][t]->width == levels[n][0]->width &&
+           levels[n][t]->height == levels[n][0]->height;
+    }
+    if (ok) slot[n++] = g;
+  }
+  v16i index[kMaxSampleGroup];
+  v32h wx2[kMaxSampleGroup];
+  v16f fy[kMaxSampleGroup];
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    const int g = slot[i];
+    const int w = levels[i][0]->width, h = levels[i][0]->height;
+    float loU, hiU, loV, hiV;
+    positionRange(AU, w, loU, hiU);
+    positionRange(AV, h, loV, hiV);
+    v16i x0, x1, y0, y1, fixedX, fixedY;
+    axis16<AU, true>(batches[0][g].u, float(w), loU, hiU, w, x0, x1, fixedX);
+    axis16<AV, true>(batches[0][g].v, float(h), loV, hiV, h, y0, y1, fixedY);
+    if (!allDiffer(x0, x1, 1) || !allDiffer(y0, y1, 1)) continue;
+    index[m] = y0 * w + x0;
+    linearWeights(fixedX, fixedY, wx2[m], fy[m]);
+    slot[m] = g;
+    for (int t = 0; t < T; ++t) levels[m][t] = levels[i][t];
+    ++m;
+  }
+  v16u texels[kMaxSampleGroup][T][4];
+  for (int i = 0; i < m; ++i)
+    for (int t = 0; t < T; ++t)
+      loadQuads16(levels[i][t]->rgba8.data(), index[i], levels[i][t]->width, texels[i][t][0], texels[i][t][1],
+                  texels[i][t][2], texels[i][t][3]);
+  uint32_t done = 0;
+  for (int i = 0; i < m; ++i) {
+    const int g = slot[i];
+    for (int t = 0; t < T; ++t)
+      blendTexels<false>(texels[i][t][0], texels[i][t][1], texels[i][t][2], texels[i][t][3], wx2[i], fy[i],
+                         __mmask16(masks[g]), batches[t][g].out);
+    done |= 1u << g;
+  }
+  return done;
+}
+
+// PreparedSampler::ImplicitGroupFn: sampleGroup16, and implicit16 for what it leaves.
+template <TextureAddress AU, TextureAddress AV>
+void implicitGroup16(const void* context, int count, const uint16_t* laneMasks, const SampleBatch* batches) {
+  const UniformPlan& plan = *static_cast<const UniformPlan*>(context);
+  GroupBatch<float (*)[kLanes]> group[kMaxSampleGroup];
+  for (int g = 0; g < count; ++g)
+    group[g] = {batches[g].coords[0], batches[g].coords[1], batches[g].coords[2], batches[g].out};
+  const UniformPlan* const plans[1] = {&plan};
+  const GroupBatch<float (*)[kLanes]>* const sets[1] = {group};
+  const uint32_t done = sampleGroup16<AU, AV, 1>(plans, count, laneMasks, sets);
+  for (int g = 0; g < count; ++g)
+    if (!(done >> g & 1)) implicit16<AU, AV>(&plan, group[g].u, group[g].v, group[g].w, laneMasks[g], group[g].out);
+}
+
+// PreparedSampler::ImplicitPairGroupFn: sampleGroup16 of both plans for the batches
+// whose coordinates are the same for both, implicitPair16 for the others.
+template <TextureAddress AU, TextureAddress AV>
+void implicitPairGroup16(const void* contextA, const void* contextB, int count, const uint16_t* laneMasks,
+                         const SampleBatch* batchesA, const SampleBatch* batchesB) {
+  const UniformPlan& a = *static_cast<const UniformPlan*>(contextA);
+  const UniformPlan& b = *static_cast<const UniformPlan*>(contextB);
+  GroupBatch<float (*)[kLanes]> groupA[kMaxSampleGroup], groupB[kMaxSampleGroup];
+  uint16_t masks[kMaxSampleGroup];
+  int at[kMaxSampleGroup];
+  int n = 0;
+  uint32_t done = 0;
+  if (sameClassification(a, b)) {
+    for (int g = 0; g < count; ++g) {
+      if (!sameCoordinates(batchesA[g].coords, batchesB[g].coords)) continue;
+      const float(*c)[kLanes] = batchesA[g].coords;
+      groupA[n] = {c[0], c[1], c[2], batchesA[g].out};
+      groupB[n] = {c[0], c[1], c[2], batchesB[g].out};
+      masks[n] = laneMasks[g];
+      at[n++] = g;
+    }
+    const UniformPlan* const plans[2] = {&a, &b};
+    const GroupBatch<float (*)[kLanes]>* const sets[2] = {groupA, groupB};
+    const uint32_t sampled = sampleGroup16<AU, AV, 2>(plans, n, masks, sets);
+    for (int i = 0; i < n; ++i)
+      if (sampled >> i & 1) done |= 1u << at[i];
+  }
+  for (int g = 0; g < count; ++g)
+    if (!(done >> g & 1))
+      implicitPair16<AU, AV>(&a, &b, batchesA[g].coords, batchesB[g].coords, laneMasks[g], batchesA[g].out,
+                             batchesB[g].out);
+}
+
+// UniformColors2D for a group (UniformColorsGroup2D): sampleGroup16 with byte output,
+// then uniformColors16 for the batches it leaves. Returns the batches written.
+template <TextureAddress AU, TextureAddress AV>
+uint32_t uniformColorsGroup16(const UniformPlan& plan, int count, const float* const* u, const float* const* v,
+                              const uint16_t* laneMasks, uint32_t* const* out) {
+  GroupBatch<uint32_t*> group[kMaxSampleGroup];
+  for (int g = 0; g < count; ++g) group[g] = {u[g], v[g], nullptr, out[g]};
+  const UniformPlan* const plans[1] = {&plan};
+  const GroupBatch<uint32_t*>* const sets[1] = {group};
+  uint32_t done = sampleGroup16<AU, AV, 1>(plans, count, laneMasks, sets);
+  for (int g = 0; g < count; ++g)
+    if (!(done >> g & 1) && uniformColors16<AU, AV>(plan, u[g], v[g], laneMasks[g], out[g])) done |= 1u << g;
+  return done;
+}
+
 // The kernels of each addressing pair, one entry per kind (Entry<AU, AV>::get(args)
 // gives the instance), and the run-time choice among them.
 template <TextureAddress AU, TextureAddress AV>
@@ -541,6 +686,18 @@ struct ImplicitEntry {
 template <TextureAddress AU, TextureAddress AV>
 struct ImplicitPairEntry {
   static constexpr ImplicitPair2D get() { return implicitPair16<AU, AV>; }
+};
+template <TextureAddress AU, TextureAddress AV>
+struct ImplicitGroupEntry {
+  static constexpr ImplicitGroup2D get() { return implicitGroup16<AU, AV>; }
+};
+template <TextureAddress AU, TextureAddress AV>
+struct ImplicitPairGroupEntry {
+  static constexpr ImplicitPairGroup2D get() { return implicitPairGroup16<AU, AV>; }
+};
+template <TextureAddress AU, TextureAddress AV>
+struct UniformColorsGroupEntry {
+  static constexpr UniformColorsGroup2D get() { return uniformColorsGroup16<AU, AV>; }
 };
 template <TextureAddress AU, TextureAddress AV>
 struct KernelEntry {
@@ -586,6 +743,18 @@ Implicit2D selectImplicit2DAvx512(TextureAddress au, TextureAddress av) {
 
 ImplicitPair2D selectImplicitPair2DAvx512(TextureAddress au, TextureAddress av) {
   return forAddressing<ImplicitPairEntry>(au, av);
+}
+
+ImplicitGroup2D selectImplicitGroup2DAvx512(TextureAddress au, TextureAddress av) {
+  return forAddressing<ImplicitGroupEntry>(au, av);
+}
+
+ImplicitPairGroup2D selectImplicitPairGroup2DAvx512(TextureAddress au, TextureAddress av) {
+  return forAddressing<ImplicitPairGroupEntry>(au, av);
+}
+
+UniformColorsGroup2D selectUniformColorsGroup2DAvx512(TextureAddress au, TextureAddress av) {
+  return forAddressing<UniformColorsGroupEntry>(au, av);
 }
 
 Kernel2D selectKernel2DAvx512(TextureAddress au, TextureAddress av, bool linear) {

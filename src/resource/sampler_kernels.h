@@ -56,6 +56,17 @@ Implicit2D selectImplicit2DAvx512(TextureAddress au, TextureAddress av);
 // Two Implicit2D calls of the same variant in one (PreparedSampler::ImplicitPairFn).
 using ImplicitPair2D = PreparedSampler::ImplicitPairFn;
 ImplicitPair2D selectImplicitPair2DAvx512(TextureAddress au, TextureAddress av);
+// Implicit2D and ImplicitPair2D for a group of batches (PreparedSampler::ImplicitGroupFn,
+// ImplicitPairGroupFn).
+using ImplicitGroup2D = PreparedSampler::ImplicitGroupFn;
+ImplicitGroup2D selectImplicitGroup2DAvx512(TextureAddress au, TextureAddress av);
+using ImplicitPairGroup2D = PreparedSampler::ImplicitPairGroupFn;
+ImplicitPairGroup2D selectImplicitPairGroup2DAvx512(TextureAddress au, TextureAddress av);
+// UniformColors2D for `count` batches (at most kMaxSampleGroup): batch g at (u[g], v[g])
+// into out[g]. Returns the batches written (bit g), what count UniformColors2D calls give.
+using UniformColorsGroup2D = uint32_t (*)(const UniformPlan&, int count, const float* const* u,
+                                          const float* const* v, const uint16_t* laneMasks, uint32_t* const* out);
+UniformColorsGroup2D selectUniformColorsGroup2DAvx512(TextureAddress au, TextureAddress av);
 
 namespace kernels {
 

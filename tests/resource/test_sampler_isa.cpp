@@ -361,6 +361,80 @@ TEST(SamplerIsaVariants, ImplicitPairGivesWhatEachSamplerGives) {
   EXPECT_GT(apart, 2400);
 }
 
+// The group lookups give for every batch what the reference gives (float results) or
+// what sampleImplicitArgb8 gives alone (bytes): groups of 1 to 8 batches mixing
+// screen-like footprints (the phases' case) with random, edge and special coordinates,
+// one or two textures of the same size or not, shared coordinates or not, lane masks.
+TEST(SamplerIsaVariants, GroupLookupsGiveWhatEachBatchGives) {
+  const CpuIsa previous = activeIsa();
+  const bool avx512 = detectedIsa() == CpuIsa::Avx512;
+  std::mt19937 rng(77);
+  const int sizes[][2] = {{17, 5}, {64, 64}, {256, 128}};
+  int groups = 0;
+  for (const auto& sa : sizes) {
+    for (const auto& sb : sizes) {
+      const auto texA = randomTexture(sa[0], sa[1], 0, uint32_t(sa[0] * 7 + sa[1]));
+      const auto texB = randomTexture(sb[0], sb[1], 0, uint32_t(sb[0] * 13 + sb[1] + 2));
+      for (int iter = 0; iter < 150; ++iter) {
+        setActiveIsa(iter % 10 == 3 || !avx512 ? CpuIsa::Avx2 : CpuIsa::Avx512);
+        SamplerState a;
+        a.addressU = kModes[rng() % 4], a.addressV = kModes[rng() % 4];
+        a.magFilter = iter % 6 == 0 ? TextureFilter::Point : TextureFilter::Linear;
+        a.minFilter = iter % 8 == 0 ? TextureFilter::Point : TextureFilter::Linear;
+        a.mipFilter = TextureFilter(rng() % 3);  // NONE, POINT, LINEAR
+        SamplerState b = a;
+        if (iter % 5 == 1) b.mipFilter = TextureFilter(rng() % 3);
+        const PreparedSampler pa(*texA, a), pb(*texB, b);
+        const int count = 1 + int(rng() % kMaxSampleGroup);
+        alignas(64) float ca[kMaxSampleGroup][3][N] = {}, cb[kMaxSampleGroup][3][N] = {};
+        alignas(64) float outA[kMaxSampleGroup][4][N], outB[kMaxSampleGroup][4][N];
+        alignas(64) uint32_t colors[kMaxSampleGroup][N];
+        uint16_t masks[kMaxSampleGroup];
+        SampleBatch batchesA[kMaxSampleGroup], batchesB[kMaxSampleGroup];
+        const float* us[kMaxSampleGroup];
+        const float* vs[kMaxSampleGroup];
+        uint32_t* colorOut[kMaxSampleGroup];
+        for (int g = 0; g < count; ++g) {
+          fillCoords(rng, rng() % 4 ? 1 : int(rng() % 4), sa[0], sa[1], ca[g][0], ca[g][1]);
+          if (rng() % 4 == 0) fillCoords(rng, 1, sb[0], sb[1], cb[g][0], cb[g][1]);
+          else std::memcpy(cb[g], ca[g], sizeof cb[g]);
+          masks[g] = rng() % 3 == 0 ? uint16_t(rng()) : uint16_t(0xffff);
+          batchesA[g] = {ca[g], outA[g]}, batchesB[g] = {cb[g], outB[g]};
+          us[g] = ca[g][0], vs[g] = ca[g][1], colorOut[g] = colors[g];
+        }
+        std::memset(outA, 0xcd, sizeof outA), std::memset(outB, 0xcd, sizeof outB);
+        const bool pair = iter % 2 == 0;
+        if (pair)
+          PreparedSampler::sampleImplicitPairGroup(pa, pb, count, masks, batchesA, batchesB);
+        else
+          pa.sampleImplicitGroup(count, masks, batchesA);
+        const uint32_t written = pa.sampleImplicitArgb8Group(count, us, vs, masks, colorOut);
+        for (int g = 0; g < count; ++g) {
+          float expected[4][N];
+          SampleRequest req;
+          req.laneMask = masks[g];
+          req.u = ca[g][0], req.v = ca[g][1];
+          sampleTextureReference(*texA, a, req, expected);
+          ASSERT_EQ(std::memcmp(expected, outA[g], sizeof expected), 0) << "iter " << iter << " batch " << g;
+          if (pair) {
+            req.u = cb[g][0], req.v = cb[g][1];
+            sampleTextureReference(*texB, b, req, expected);
+            ASSERT_EQ(std::memcmp(expected, outB[g], sizeof expected), 0) << "iter " << iter << " batch " << g;
+          }
+          alignas(64) uint32_t alone[N];
+          const bool wrote = pa.sampleImplicitArgb8(ca[g][0], ca[g][1], masks[g], alone);
+          ASSERT_EQ(bool(written >> g & 1), wrote) << "iter " << iter << " batch " << g;
+          for (int l = 0; l < N; ++l)
+            if (wrote && masks[g] >> l & 1) ASSERT_EQ(colors[g][l], alone[l]) << "iter " << iter << " batch " << g;
+        }
+        ++groups;
+      }
+    }
+  }
+  setActiveIsa(previous);
+  EXPECT_EQ(groups, 9 * 150);
+}
+
 // sampleImplicitArgb8 gives the 8-bit unorms of sampleImplicit's channels as D3DCOLORs
 // (unorm8 of core/color.h: what the output merger stores), on every lane in the mask,
 // wherever it samples at all (the AVX-512 batch kernel's states: mip filter NONE or

@@ -56,6 +56,14 @@ struct SampleRequest {
 void sampleTexture(const Texture& tex, const SamplerState& state, const SampleRequest& req,
                    float out[4][kBatchLanes]);
 
+// One batch of a group lookup (PreparedSampler::sampleImplicitGroup): its coordinate
+// rows u, v, w and where its result goes.
+struct SampleBatch {
+  const float (*coords)[kBatchLanes];
+  float (*out)[kBatchLanes];
+};
+constexpr int kMaxSampleGroup = 8;
+
 // A texture and sampler state prepared for many requests (one draw): the checks
 // sampleTexture makes per call (addressing, filters, which levels the vectorised
 // kernels can read and with which kernel) made once. sample() gives exactly what
@@ -97,6 +105,24 @@ class PreparedSampler {
                                   const float (*coordsB)[kBatchLanes], uint16_t laneMask,
                                   float (*outA)[kBatchLanes], float (*outB)[kBatchLanes]);
   ImplicitPairFn implicitPair() const { return pair_; }
+  // Implicit lookups of a group of batches (at most kMaxSampleGroup) in one call: what
+  // implicitKernel() gives for each batch g (coordinate rows batches[g].coords, lanes
+  // laneMasks[g], result into batches[g].out). The batches' work is interleaved phase
+  // by phase so that their long dependency chains overlap.
+  using ImplicitGroupFn = void (*)(const void* context, int count, const uint16_t* laneMasks,
+                                   const SampleBatch* batches);
+  void sampleImplicitGroup(int count, const uint16_t* laneMasks, const SampleBatch* batches) const;
+  // The group lookups of two samplers (batchesA of this one, batchesB of `b`): what
+  // implicitPair() gives for each batch, where both have the same implicitPairGroup().
+  using ImplicitPairGroupFn = void (*)(const void* a, const void* b, int count, const uint16_t* laneMasks,
+                                       const SampleBatch* batchesA, const SampleBatch* batchesB);
+  static void sampleImplicitPairGroup(const PreparedSampler& a, const PreparedSampler& b, int count,
+                                      const uint16_t* laneMasks, const SampleBatch* batchesA,
+                                      const SampleBatch* batchesB);
+  // sampleImplicitArgb8 for a group of batches: batch g at (u[g], v[g]) into out[g].
+  // Returns the batches written (bit g), as count sampleImplicitArgb8 calls would.
+  uint32_t sampleImplicitArgb8Group(int count, const float* const* u, const float* const* v,
+                                    const uint16_t* laneMasks, uint32_t* const* out) const;
 
  private:
   const Texture* tex_;
@@ -104,6 +130,8 @@ class PreparedSampler {
   std::shared_ptr<const void> plan_;  // one-level 2D plan when the state allows it
   ImplicitKernel implicit_;
   ImplicitPairFn pair_ = nullptr;
+  ImplicitGroupFn group_ = nullptr;
+  ImplicitPairGroupFn pairGroup_ = nullptr;
 };
 
 // Cube face selection: face index (D3DCUBEMAP_FACES) and (u,v) in [0,1] on that face.
