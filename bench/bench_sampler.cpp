@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <algorithm>
+#include <array>
 #include <random>
 #include <vector>
 
@@ -171,5 +173,50 @@ void BM_TrilinearRGBA8Stretched(benchmark::State& state) {
           4.0f);
 }
 BENCHMARK(BM_TrilinearRGBA8Stretched);
+
+// LINEAR_MIPMAP_NEAREST as BM_BilinearMipNearestRGBA8, looked up kMaxSampleGroup
+// batches at a time (PreparedSampler::sampleImplicitGroup), and for two textures at the same
+// coordinates (sampleImplicitPairGroup, counted as two samples a lane).
+void runGroups(benchmark::State& state, bool pair) {
+  auto texA = makeTexture(0), texB = makeTexture(0);
+  SamplerState ss;
+  ss.magFilter = ss.minFilter = TextureFilter::Linear;
+  ss.mipFilter = TextureFilter::Point;
+  const PreparedSampler a(*texA, ss), b(*texB, ss);
+  Coords c(1.3f, false);
+  std::vector<float> w(c.u.size(), 0.0f);
+  // The coordinate rows u, v, w of each batch side by side, as registers hold them.
+  std::vector<std::array<float, 3 * kBatchLanes>> rows(size_t(c.batches()));
+  for (int i = 0; i < c.batches(); ++i)
+    for (int l = 0; l < kBatchLanes; ++l)
+      rows[size_t(i)][size_t(l)] = c.u[size_t(i * kBatchLanes + l)],
+      rows[size_t(i)][size_t(kBatchLanes + l)] = c.v[size_t(i * kBatchLanes + l)];
+  alignas(64) float outA[kMaxSampleGroup][4][kBatchLanes], outB[kMaxSampleGroup][4][kBatchLanes];
+  uint16_t masks[kMaxSampleGroup];
+  std::fill_n(masks, kMaxSampleGroup, uint16_t(0xffff));
+  int64_t samples = 0;
+  int first = 0;
+  for (auto _ : state) {
+    SampleBatch batchesA[kMaxSampleGroup], batchesB[kMaxSampleGroup];
+    for (int g = 0; g < kMaxSampleGroup; ++g) {
+      const auto* co = reinterpret_cast<const float(*)[kBatchLanes]>(rows[size_t(first + g)].data());
+      batchesA[g] = {co, outA[g]}, batchesB[g] = {co, outB[g]};
+    }
+    if (pair)
+      PreparedSampler::sampleImplicitPairGroup(a, b, kMaxSampleGroup, masks, batchesA, batchesB);
+    else
+      a.sampleImplicitGroup(kMaxSampleGroup, masks, batchesA);
+    benchmark::DoNotOptimize(outA);
+    benchmark::DoNotOptimize(outB);
+    benchmark::ClobberMemory();
+    first = first + 2 * kMaxSampleGroup > c.batches() ? 0 : first + kMaxSampleGroup;
+    samples += kMaxSampleGroup * kBatchLanes * (pair ? 2 : 1);
+  }
+  state.SetItemsProcessed(samples);
+}
+void BM_BilinearMipNearestGroupRGBA8(benchmark::State& state) { runGroups(state, false); }
+BENCHMARK(BM_BilinearMipNearestGroupRGBA8);
+void BM_BilinearMipNearestPairGroupRGBA8(benchmark::State& state) { runGroups(state, true); }
+BENCHMARK(BM_BilinearMipNearestPairGroupRGBA8);
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "refx/exec/analysis.h"
 
+#include <cstddef>
+
 namespace refx::exec {
 
 namespace {
@@ -33,6 +35,48 @@ std::optional<SamplePassthrough> findSamplePassthrough(const Program& program) {
       mov.dst.index != 0 || mov.dst.mask != 0xF || mov.dst.rel != RelMode::None || !keepsUnitRange(mov) ||
       !plainRead(mov.src[0], RegFile::Temp) || mov.src[0].index != tex.dst.index)
     return std::nullopt;
+  return found;
+}
+
+std::optional<TexturePrologue> findTexturePrologue(const Program& program) {
+  if (program.flowControl) return std::nullopt;
+  // Registers read and written by the instructions that stay (file, index; index -1:
+  // the whole file, relative addressing).
+  std::vector<std::pair<RegFile, int>> read, written;
+  const auto touches = [](const std::vector<std::pair<RegFile, int>>& set, RegFile file, int index) {
+    for (const auto& [f, i] : set)
+      if (f == file && (i == index || i < 0)) return true;
+    return false;
+  };
+  TexturePrologue found;
+  std::vector<bool> moved(program.code.size(), false);
+  for (size_t n = 0; n < program.code.size(); ++n) {
+    const Instr& in = program.code[n];
+    if (in.op == Op::Kill) break;  // lookups after it sample fewer lanes
+    const Src& c = in.src[0];
+    const bool plain = in.op == Op::Tex && in.dst.mask == 0xF && in.dst.rel == RelMode::None && in.shift == 0 &&
+                       !in.saturate && !in.clamp && in.quantize == 0 &&
+                       (in.dst.file == RegFile::Temp || in.dst.file == RegFile::Output) &&
+                       c.file == RegFile::Input && c.swizzle == kSwzXYZW && c.mod == SrcMod::None &&
+                       c.rel == RelMode::None && c.flags == 0;
+    // Moved ahead of the instructions before it: none of them writes its coordinates or
+    // reads or writes its result.
+    if (plain && !touches(written, c.file, c.index) && !touches(read, in.dst.file, in.dst.index) &&
+        !touches(written, in.dst.file, in.dst.index)) {
+      found.lookups.push_back({in.sampler, c.index, in.dst.file, in.dst.index});
+      moved[n] = true;
+      continue;
+    }
+    for (int i = 0; i < sourceCount(in.op); ++i)
+      read.emplace_back(in.src[size_t(i)].file, in.src[size_t(i)].rel == RelMode::None ? in.src[size_t(i)].index : -1);
+    written.emplace_back(in.dst.file, in.dst.rel == RelMode::None ? in.dst.index : -1);
+  }
+  if (found.lookups.empty()) return std::nullopt;
+  found.rest = program;
+  found.rest.name.append(" after its texture lookups");
+  found.rest.code.clear();
+  for (size_t n = 0; n < program.code.size(); ++n)
+    if (!moved[n]) found.rest.code.push_back(program.code[n]);
   return found;
 }
 

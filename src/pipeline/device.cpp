@@ -404,7 +404,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
 
   exec::PrepareOptions prepareOptions;
   prepareOptions.jit = options_.jit;
-  exec::ProgramBuildInfo vertexBuild, pixelBuild;
+  exec::ProgramBuildInfo vertexBuild, pixelBuild, pixelRestBuild;
   const uint32_t vertexBoundStops = runVertexStage(*plan, st, impl_->pool, vertices.lo,
                                                    vertices.count, impl_->vertices, prepareOptions, vertexBuild);
   RasterDraw d;
@@ -415,6 +415,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.pixelsShaded = &stats_.pixelsShaded;
   d.prepareOptions = prepareOptions;
   d.pixelBuild = &pixelBuild;
+  d.pixelRestBuild = &pixelRestBuild;
   std::atomic<uint32_t> pixelBoundStops{0};
   d.execContext.boundStops = &pixelBoundStops;
   setupPrimitives(*plan, st, caps_.maxPointSize, type, primitiveCount, vertices, impl_->vertices, d);
@@ -429,11 +430,13 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     };
     record(plan->vertexProgram(), vertexBuild);
     if (d.pixelProgram) record(*d.pixelProgram, pixelBuild);
+    if (d.pixelRest && d.groupedLookups) record(*d.pixelRest, pixelRestBuild);
   }
   for (const TexturePtr& t : targets_)
     if (t) t->markDirty();
   ++stats_.draws;
   if (d.passthroughSampler) ++stats_.samplePassthroughDraws;
+  if (d.groupedLookups) ++stats_.groupedLookupDraws;
   reportBoundStops(plan->vertexLowered ? "vertex shader" : nullptr, vertexBoundStops, "vertices");
   reportBoundStops(plan->pixelLowered ? "pixel shader" : nullptr, pixelBoundStops.load(), "pixels");
 }

@@ -343,6 +343,8 @@ std::shared_ptr<const DrawPlan> buildDrawPlan(const DeviceState& st, const DrawS
                      !p.alphaTest && !p.blend.enable && (!p.depthTest || p.earlyDepth);
   for (int i = 1; i < kMaxRenderTargets; ++i) opaqueStore &= m.targets[size_t(i)] == MergeState::Target::None;
   if (opaqueStore && !p.usesPosition && !p.usesFace) p.samplePassthrough = exec::findSamplePassthrough(p.pixelProgram);
+  if (!p.samplePassthrough && !p.usesPosition && !p.usesFace && !p.shaderDepth && (!p.depthTest || p.earlyDepth))
+    p.texturePrologue = exec::findTexturePrologue(p.pixelProgram);
   if (p.earlyDepth) p.earlyDepthTestFn = chooseEarlyDepthTest(p.depthFunc, p.depthWrite);
   return plan;
 }

@@ -82,6 +82,11 @@ struct DrawPlan {
   // (opaque, 8-bit target 0 alone, depth tested early if at all): the pixel stage may
   // write the sample's bytes itself (RasterDraw::passthroughSampler).
   std::optional<exec::SamplePassthrough> samplePassthrough;
+  // The texture lookups the pixel program can make first (exec::findTexturePrologue),
+  // for a draw whose tile loop is compiled for its state (no vPos, vFace or shader
+  // depth; depth tested early if at all): the pixel stage may make them for groups of
+  // batches (RasterDraw::prologue).
+  std::optional<exec::TexturePrologue> texturePrologue;
 };
 
 // The key of the plan for `st` drawing into `surfaces` with `options`/`caps`.

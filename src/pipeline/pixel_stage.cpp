@@ -116,6 +116,19 @@ void bindPixelStage(const DrawPlan& plan, const DeviceState& st, PixelBindings& 
         d.passthroughInput = int(j);
       }
   }
+  d.prologue.clear();
+  d.pixelRest = nullptr;
+  if (plan.texturePrologue) {
+    for (const exec::TexturePrologue::Lookup& l : plan.texturePrologue->lookups) {
+      const BoundSampler* bound = l.sampler < kMaxPixelSamplers ? &b.bound[size_t(l.sampler)] : nullptr;
+      if (!bound || !bound->prepared || bound->texture->type() != TextureType::Texture2D) {
+        d.prologue.clear();
+        break;
+      }
+      d.prologue.push_back({&*bound->prepared, l.input, l.file, l.index});
+    }
+    if (!d.prologue.empty()) d.pixelRest = &plan.texturePrologue->rest;
+  }
   d.usesPosition = plan.usesPosition;
   d.usesFace = plan.usesFace;
   d.shaderDepth = plan.shaderDepth;

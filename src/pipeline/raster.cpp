@@ -41,6 +41,16 @@ void bin(const RasterDraw& d, TileBins& bins) {
 alignas(64) constexpr float kLaneXf[N] = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
 alignas(64) constexpr float kLaneYf[N] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
 
+// One batch of a group (shadeGroup): its registers, depth and pass-through colors.
+struct GroupSlot {
+  exec::BatchRegisters regs;  // prepared for RasterDraw::pixelRest
+  std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations in regs
+  alignas(64) float z[N];
+  alignas(64) float passU[N], passV[N];  // RasterDraw::passthroughSampler's coordinates
+  alignas(64) uint32_t packed[N];
+  InputTarget passTargets[2];
+};
+
 struct TileWorker {
   exec::BatchRegisters regs;
   std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations, in order
@@ -54,6 +64,10 @@ struct TileWorker {
   alignas(64) float w[N];  // 1 / invW
   alignas(64) float passU[N], passV[N];  // RasterDraw::passthroughSampler's coordinates
   InputTarget passTargets[2];
+  // Blocks shaded in groups (shadeGroup): the draw has a texture prologue or a
+  // pass-through sampler.
+  bool grouped = false;
+  std::array<GroupSlot, kMaxSampleGroup> group;
 };
 
 // Eight lanes as one value (v8f, merge_kernels.h): interpolation is vectorised
@@ -98,15 +112,17 @@ void interpolateInputsAvx2(const float* planes, const InputTarget* targets, size
 // all (kNoDepth), their merge the opaque store into target 0 (Opaque) or d.merge.
 constexpr uint32_t kAnyState = 0xffffffffu, kNoDepth = 0;
 
-template <uint32_t F, bool Write, bool Opaque>
-void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_t mask,
-                TileWorker& w, uint64_t& shaded) {
+// A batch's start: its depth (into z) and the early depth test, with the deferred
+// Clear's depth where the block still has it. Returns the lanes to shade; 0: the block
+// is finished (its fill written). fillLeft: the FillParts of the block the Clear has
+// yet to write (lazyFill: the batch tests against and writes over the fill's values).
+template <uint32_t F, bool Write>
+[[gnu::always_inline]] inline uint16_t enterBatch(const RasterDraw& d, const Primitive& p, int bx, int by,
+                                                  uint16_t mask, TileWorker& w, float* z, uint32_t& fillLeft) {
   constexpr bool any = F == kAnyState;
   const float* pl = d.planes.data() + p.planeOffset;
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
-  // FillParts of this block the deferred Clear has yet to write (lazyFill: the batch
-  // tests against and writes over the fill's values).
-  uint32_t fillLeft = w.lazyFill.parts && w.pending.take(bx, by) ? w.lazyFill.parts : 0;
+  fillLeft = w.lazyFill.parts && w.pending.take(bx, by) ? w.lazyFill.parts : 0;
   v8f fx[2], fy[2];
   for (int h = 0; h < 2; ++h) {
     fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
@@ -117,36 +133,73 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   if (any ? d.depthTest || d.usesPosition : F != kNoDepth) {  // z is read by the depth test and vPos only
     if (d.wBuffer) {  // w / w_far plus the primitive's depth bias
       for (int h = 0; h < 2; ++h)
-        store8(w.z + 8 * h, bcast(d.invFarW) / load8(w.invW + 8 * h) + bcast(p.wDepthOffset));
+        store8(z + 8 * h, bcast(d.invFarW) / load8(w.invW + 8 * h) + bcast(p.wDepthOffset));
     } else {
-      evalPlane(pl + 3, fx, fy, nullptr, w.z);
+      evalPlane(pl + 3, fx, fy, nullptr, z);
     }
     for (int h = 0; h < 2; ++h) {
       // std::min(std::max(z, 0), 1): NaN stays NaN.
-      v8f z = load8(w.z + 8 * h);
-      z = z < zero ? zero : z;
-      store8(w.z + 8 * h, one < z ? one : z);
+      v8f v = load8(z + 8 * h);
+      v = v < zero ? zero : v;
+      store8(z + 8 * h, one < v ? one : v);
     }
   }
   if (any ? d.earlyDepth : F != kNoDepth) {
     if (fillLeft & kFillDepth) {  // the block's depth is the fill's z in every lane
       if constexpr (any)
-        mask = depthTestOverFill(d, bx, by, mask, w.z);
+        mask = depthTestOverFill(d, bx, by, mask, z);
       else
-        mask = depthRowsOver(d, bx, by, mask, w.z, d.fill.z, [](v8f a, v8f b) { return compareDepths<F>(a, b); });
+        mask = depthRowsOver(d, bx, by, mask, z, d.fill.z, [](v8f a, v8f b) { return compareDepths<F>(a, b); });
       fillLeft &= ~kFillDepth;
     } else if (!any && bx + 4 <= d.width && by + 4 <= d.height) {
-      mask = depthRows(d, bx, by, mask, w.z, Write, [](v8f a, v8f b) { return compareDepths<F>(a, b); });
+      mask = depthRows(d, bx, by, mask, z, Write, [](v8f a, v8f b) { return compareDepths<F>(a, b); });
     } else {
-      mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, w.z, d.depthWrite);
+      mask = (d.earlyDepthTestFn ? d.earlyDepthTestFn : earlyDepthTest)(d, bx, by, mask, z, d.depthWrite);
     }
+    if (!mask && fillLeft) fillBlock(d, bx, by, fillLeft);
+  }
+  return mask;
+}
+
+// A batch's end: its lanes counted and its color written, with the fill where the
+// block still has it. packed: the D3DCOLORs of a pass-through; null: the program's
+// outputs in `regs`.
+template <bool Opaque>
+[[gnu::always_inline]] inline void leaveBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_t mask,
+                                              const exec::BatchRegisters& regs, const float* z, uint32_t fillLeft,
+                                              const uint32_t* packed, uint64_t& shaded) {
+  const float (*color)[N] = regs.outputs[0].c;
+  shaded += static_cast<uint64_t>(__builtin_popcount(mask));
+  if (fillLeft) {  // target 0's fill (the depth's is written by now)
     if (!mask) {
-      if (fillLeft) fillBlock(d, bx, by, fillLeft);
+      fillBlock(d, bx, by, fillLeft);
       return;
     }
+    if (packed)
+      storePackedOver(d.targets[0], bx, by, mask, packed, d.fill.colorValue);
+    else
+      storeOpaqueOver(d.targets[0], bx, by, mask, color, d.fill.colorValue);
+    return;
   }
+  if (!mask) return;
+  if (packed)
+    storePacked(d.targets[0], d.width, d.height, bx, by, mask, packed);
+  else if constexpr (Opaque)
+    storeOpaque(d.targets[0], d.width, d.height, bx, by, mask, color);
+  else
+    (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, regs.outputs.data(), z, d.earlyDepth, p.counterClockwise);
+}
+
+template <uint32_t F, bool Write, bool Opaque>
+void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_t mask,
+                TileWorker& w, uint64_t& shaded) {
+  constexpr bool any = F == kAnyState;
+  const float* pl = d.planes.data() + p.planeOffset;
+  const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
+  uint32_t fillLeft;
+  mask = enterBatch<F, Write>(d, p, bx, by, mask, w, w.z, fillLeft);
+  if (!mask) return;
   // The program's output 0 as floats, or (passthrough) as the D3DCOLORs to store.
-  const float (*color)[N] = w.regs.outputs[0].c;
   alignas(64) uint32_t packed[N];
   bool isPacked = false;
   if (Opaque && d.passthroughSampler) {
@@ -162,7 +215,14 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
     if (any && d.usesPosition) {
       auto& pos = w.regs.inputs[kPixelInPosition];
       // The position's z is the interpolated z, also when the depth buffer holds w.
-      if (d.wBuffer) evalPlane(pl + 3, fx, fy, nullptr, pos.c[2]);
+      if (d.wBuffer) {
+        v8f fx[2], fy[2];
+        for (int h = 0; h < 2; ++h) {
+          fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
+          fy[h] = bcast(oy) + load8(kLaneYf + 8 * h);
+        }
+        evalPlane(pl + 3, fx, fy, nullptr, pos.c[2]);
+      }
       for (int l = 0; l < N; ++l) {
         pos.c[0][l] = float(bx + kLaneX[l]);
         pos.c[1][l] = float(by + kLaneY[l]);
@@ -185,25 +245,108 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       for (int l = 0; l < N; ++l) w.z[l] = std::clamp(z[l], 0.0f, 1.0f);
     }
   }
-  shaded += static_cast<uint64_t>(__builtin_popcount(mask));
-  if (fillLeft) {  // target 0's fill (the depth's is written by now)
-    if (!mask) {
-      fillBlock(d, bx, by, fillLeft);
-      return;
-    }
-    if (isPacked)
-      storePackedOver(d.targets[0], bx, by, mask, packed, d.fill.colorValue);
-    else
-      storeOpaqueOver(d.targets[0], bx, by, mask, color, d.fill.colorValue);
+  leaveBatch<Opaque>(d, p, bx, by, mask, w.regs, w.z, fillLeft, isPacked ? packed : nullptr, shaded);
+}
+
+// Lanes a texture lookup produces: every lane of a 2x2 quad with a live lane (as the
+// program's own lookups ask for them).
+inline uint16_t quadLanes(uint16_t live) {
+  uint16_t m = 0;
+  for (int q = 0; q < N / 4; ++q)
+    if ((live >> (4 * q)) & 0xF) m |= uint16_t(0xF << (4 * q));
+  return m;
+}
+
+// shadeBatch for up to kMaxSampleGroup blocks of one primitive whose texture lookups
+// are made for all of them at once (RasterDraw::prologue, or the pass-through's): the
+// blocks' depth tests and interpolation, then the lookups, group by group, then the
+// rest of the program and the store block by block. The same results as shadeBatch
+// for each block: the lookups read only interpolated inputs.
+template <uint32_t F, bool Write, bool Opaque>
+void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blocks, int count, TileWorker& w,
+                uint64_t& shaded) {
+  static_assert(F != kAnyState, "groups are for draws whose tile loop is compiled for their state");
+  const bool passthrough = Opaque && d.passthroughSampler;
+  if (!passthrough && d.prologue.empty()) {
+    for (int i = 0; i < count; ++i)
+      shadeBatch<F, Write, Opaque>(d, p, blocks[i].bx, blocks[i].by, uint16_t(blocks[i].mask), w, shaded);
     return;
   }
-  if (!mask) return;
-  if (isPacked)
-    storePacked(d.targets[0], d.width, d.height, bx, by, mask, packed);
-  else if constexpr (Opaque)
-    storeOpaque(d.targets[0], d.width, d.height, bx, by, mask, color);
-  else
-    (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, w.regs.outputs.data(), w.z, d.earlyDepth, p.counterClockwise);
+  struct Item {
+    int bx, by;
+    uint16_t mask;
+    uint32_t fillLeft;
+  } items[kMaxSampleGroup];
+  int n = 0;
+  for (int i = 0; i < count; ++i) {
+    const int bx = blocks[i].bx, by = blocks[i].by;
+    GroupSlot& slot = w.group[size_t(n)];
+    uint32_t fillLeft;
+    const uint16_t mask = enterBatch<F, Write>(d, p, bx, by, uint16_t(blocks[i].mask), w, slot.z, fillLeft);
+    if (!mask) continue;
+    const float* pl = d.planes.data() + p.planeOffset;
+    const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
+    if (passthrough)
+      w.interpolateInputs(pl + 6 + 3 * d.passthroughInput, slot.passTargets, 2, ox, oy, w.invW, w.w);
+    else
+      w.interpolateInputs(pl + 6, slot.inputTargets.data(), slot.inputTargets.size(), ox, oy, w.invW, w.w);
+    items[n++] = {bx, by, mask, fillLeft};
+  }
+  if (!n) return;
+  uint16_t lanes[kMaxSampleGroup];
+  uint32_t packedDone = 0;
+  if (passthrough) {
+    const float* u[kMaxSampleGroup];
+    const float* v[kMaxSampleGroup];
+    uint32_t* out[kMaxSampleGroup];
+    for (int g = 0; g < n; ++g) {
+      GroupSlot& slot = w.group[size_t(g)];
+      u[g] = slot.passU, v[g] = slot.passV, out[g] = slot.packed;
+      lanes[g] = items[g].mask;
+    }
+    packedDone = d.passthroughSampler->sampleImplicitArgb8Group(n, u, v, lanes, out);
+    for (int g = 0; g < n; ++g) {
+      GroupSlot& slot = w.group[size_t(g)];
+      if (!(packedDone >> g & 1))
+        d.passthroughSampler->sampleImplicit(slot.passU, slot.passV, nullptr, lanes[g], slot.regs.outputs[0].c);
+      else if (!d.targets[0].hasAlpha)
+        for (uint32_t& c : slot.packed) c |= 0xff000000u;
+    }
+  } else {
+    for (int g = 0; g < n; ++g) lanes[g] = quadLanes(items[g].mask);
+    const auto batchesOf = [&](const RasterDraw::PrologueLookup& l, SampleBatch* batches) {
+      for (int g = 0; g < n; ++g) {
+        exec::BatchRegisters& regs = w.group[size_t(g)].regs;
+        auto& file = l.file == exec::RegFile::Output ? regs.outputs : regs.temps;
+        batches[g] = {regs.inputs[size_t(l.input)].c, file[size_t(l.index)].c};
+      }
+    };
+    for (size_t k = 0; k < d.prologue.size(); ++k) {
+      const RasterDraw::PrologueLookup& a = d.prologue[k];
+      SampleBatch batchesA[kMaxSampleGroup], batchesB[kMaxSampleGroup];
+      batchesOf(a, batchesA);
+      if (k + 1 < d.prologue.size() &&
+          (d.prologue[k + 1].file != a.file || d.prologue[k + 1].index != a.index)) {
+        batchesOf(d.prologue[k + 1], batchesB);
+        PreparedSampler::sampleImplicitPairGroup(*a.sampler, *d.prologue[k + 1].sampler, n, lanes, batchesA,
+                                                 batchesB);
+        ++k;
+      } else {
+        a.sampler->sampleImplicitGroup(n, lanes, batchesA);
+      }
+    }
+  }
+  for (int g = 0; g < n; ++g) {
+    GroupSlot& slot = w.group[size_t(g)];
+    uint16_t mask = items[g].mask;
+    if (!passthrough) {
+      slot.regs.laneMask = mask;
+      exec::execute(*d.pixelRest, d.execContext, slot.regs);
+      mask &= slot.regs.laneMask;
+    }
+    leaveBatch<Opaque>(d, p, items[g].bx, items[g].by, mask, slot.regs, slot.z, items[g].fillLeft,
+                       packedDone >> g & 1 ? slot.packed : nullptr, shaded);
+  }
 }
 
 template <uint32_t F, bool Write, bool Opaque>
@@ -219,6 +362,13 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
     const int maxX = std::min(p.maxX, x1), maxY = std::min(p.maxY, y1);
     const int blocks = w.coverBlocks(p, minX, minY, maxX, maxY, w.blocks);
+    if constexpr (F != kAnyState) {
+      if (w.grouped) {
+        for (int i = 0; i < blocks; i += kMaxSampleGroup)
+          shadeGroup<F, Write, Opaque>(d, p, w.blocks + i, std::min(kMaxSampleGroup, blocks - i), w, count);
+        continue;
+      }
+    }
     for (int i = 0; i < blocks; ++i)
       shadeBatch<F, Write, Opaque>(d, p, w.blocks[i].bx, w.blocks[i].by, uint16_t(w.blocks[i].mask), w, count);
   }
@@ -293,6 +443,30 @@ void applyFill(const RasterDraw::Fill& fill, DepthStencilSurface* depth, int x0,
   }
 }
 
+namespace {
+
+// The registers of a worker's group slots, as the worker's own for the whole program
+// (rasterize), prepared for the program without its lookups.
+void prepareGroup(const RasterDraw& draw, TileWorker& w, exec::ProgramBuildInfo* build) {
+  for (GroupSlot& slot : w.group) {
+    const exec::Program& program = draw.pixelRest ? *draw.pixelRest : *draw.pixelProgram;
+    slot.regs.resize(program);
+    if (int(slot.regs.inputs.size()) < kPixelInputCount) slot.regs.inputs.resize(kPixelInputCount);
+    for (auto& in : slot.regs.inputs) std::memset(&in, 0, sizeof(in));
+    if (draw.pixelRest) {
+      const exec::ProgramBuildInfo info = exec::prepare(program, draw.execContext, slot.regs, draw.prepareOptions);
+      if (build && &slot == &w.group[0]) *build = info;
+    }
+    slot.inputTargets.clear();
+    for (const InterpolatedInput& in : draw.inputs)
+      slot.inputTargets.push_back({slot.regs.inputs[in.input].c[in.component], in.flat});
+    slot.passTargets[0] = {slot.passU, false};
+    slot.passTargets[1] = {slot.passV, false};
+  }
+}
+
+}  // namespace
+
 void rasterize(RasterDraw& draw, ThreadPool& pool) {
   const bool fill = draw.fill.color || draw.fill.depth || draw.fill.stencil;
   if (draw.prims.empty() && !fill) return;
@@ -323,9 +497,16 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
       w.inputTargets.push_back({w.regs.inputs[in.input].c[in.component], in.flat});
   }
   std::vector<uint64_t> shaded(threads, 0);
-  const ShadeTileFn shadeTile = chooseShadeTile(draw);
+  const ShadeTileFn tileLoop = chooseShadeTile(draw);
+  // Groups are for the tile loops compiled for a state (shadeGroup).
+  draw.groupedLookups =
+      (draw.pixelRest || draw.passthroughSampler) && tileLoop != shadeTile<kAnyState, false, false>;
+  for (auto& w : workers) {
+    w.grouped = draw.groupedLookups;
+    if (w.grouped) prepareGroup(draw, w, &w == &workers[0] ? draw.pixelRestBuild : nullptr);
+  }
   pool.parallelFor(busy.size(), [&](size_t i, int thread) {
-    shadeTile(draw, bins, busy[i], workers[thread], shaded[thread]);
+    tileLoop(draw, bins, busy[i], workers[thread], shaded[thread]);
   });
   if (draw.pixelsShaded)
     for (uint64_t s : shaded) *draw.pixelsShaded += s;

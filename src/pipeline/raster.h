@@ -124,6 +124,20 @@ struct RasterDraw {
   // the bytes, instead of running the program and the merge. Null: the program runs.
   const PreparedSampler* passthroughSampler = nullptr;
   int passthroughInput = -1;
+  // The plan's texturePrologue where every lookup's texture is a prepared 2D one: the
+  // pixel stage makes the lookups for groups of batches (PreparedSampler::
+  // sampleImplicitGroup), then runs pixelRest (the program without them) on each batch.
+  // Empty: the whole program runs batch by batch.
+  struct PrologueLookup {
+    const PreparedSampler* sampler = nullptr;
+    int input = 0;                             // the coordinates' input register
+    exec::RegFile file = exec::RegFile::Temp;  // the result's register
+    int index = 0;
+  };
+  std::vector<PrologueLookup> prologue;
+  const exec::Program* pixelRest = nullptr;
+  exec::ProgramBuildInfo* pixelRestBuild = nullptr;  // gets what ran pixelRest (null: not wanted)
+  bool groupedLookups = false;  // set by rasterize: the lookups were made for groups of blocks
   uint64_t* pixelsShaded = nullptr;  // per-thread counters (array of threadCount)
   exec::PrepareOptions prepareOptions;     // how the pixel program may run
   exec::ProgramBuildInfo* pixelBuild = nullptr;  // gets what ran it (null: not wanted)

@@ -629,7 +629,7 @@ void implicitPairGroup16(const void* contextA, const void* contextB, int count, 
   const UniformPlan& a = *static_cast<const UniformPlan*>(contextA);
   const UniformPlan& b = *static_cast<const UniformPlan*>(contextB);
   GroupBatch<float (*)[kLanes]> groupA[kMaxSampleGroup], groupB[kMaxSampleGroup];
-  uint16_t masks[kMaxSampleGroup];
+  uint16_t masks[kMaxSampleGroup] = {};
   int at[kMaxSampleGroup];
   int n = 0;
   uint32_t done = 0;

@@ -55,5 +55,72 @@ TEST(SamplePassthrough, AnythingElseIsNot) {
   EXPECT_FALSE(find("ps_2_0\ndcl t0\ndcl_2d s0\ntexld r0, t0, s0\nmov oC0, r0\nmov oDepth, r0.x\n"));
 }
 
+std::optional<TexturePrologue> prologue(const char* source) {
+  return findTexturePrologue(lowerShader(shader::decode(shader::assembleTokens(source, "test"))).program);
+}
+
+TEST(TexturePrologue, Ps11LookupsThenArithmetic) {
+  // RacorX6's shader: t0 samples s0 at texture coordinate 0, t1 samples s1 at 1; the
+  // arithmetic after them is the rest.
+  const char* src = "ps_1_1\ntex t0\ntex t1\ndp3 r1, t1_bx2, v0_bx2\nmul r0, t0, r1\n";
+  const Program whole = lowerShader(shader::decode(shader::assembleTokens(src, "test"))).program;
+  const auto p = prologue(src);
+  ASSERT_TRUE(p);
+  ASSERT_EQ(p->lookups.size(), 2u);
+  EXPECT_EQ(p->lookups[0].sampler, 0);
+  EXPECT_EQ(p->lookups[0].input, kPixelInTex0);
+  EXPECT_EQ(p->lookups[1].sampler, 1);
+  EXPECT_EQ(p->lookups[1].input, kPixelInTex0 + 1);
+  EXPECT_NE(p->lookups[0].file, RegFile::Input);
+  // The rest: the whole program without the two lookups, in its order (ps.1.1's
+  // lowering saturates v0 first, which the lookups move ahead of).
+  std::vector<Op> others;
+  for (const Instr& in : whole.code)
+    if (in.op != Op::Tex) others.push_back(in.op);
+  ASSERT_EQ(p->rest.code.size(), whole.code.size() - 2);
+  ASSERT_EQ(others.size(), p->rest.code.size());
+  for (size_t i = 0; i < others.size(); ++i) EXPECT_EQ(p->rest.code[i].op, others[i]);
+  EXPECT_EQ(p->rest.tempCount, whole.tempCount);
+  EXPECT_EQ(p->rest.immediates.size(), whole.immediates.size());
+}
+
+TEST(TexturePrologue, Ps20LookupsStopAtTheFirstOtherInstruction) {
+  // texld r0, t0, s0 and texld r1, t1, s2 read inputs; the third lookup reads r0 (a
+  // dependent read) and ends the prologue.
+  const auto p = prologue("ps_2_0\ndcl t0\ndcl t1\ndcl_2d s0\ndcl_2d s1\ndcl_2d s2\n"
+                          "texld r0, t0, s0\ntexld r1, t1, s2\ntexld r2, r0, s1\nadd r0, r1, r2\nmov oC0, r0\n");
+  ASSERT_TRUE(p);
+  ASSERT_EQ(p->lookups.size(), 2u);
+  EXPECT_EQ(p->lookups[1].sampler, 2);
+  EXPECT_EQ(p->lookups[1].input, kPixelInTex0 + 1);
+  EXPECT_EQ(p->rest.code.front().op, Op::Tex);
+}
+
+TEST(TexturePrologue, ALookupStaysBehindWhatTouchesItsResult) {
+  // r0 written before the lookup into r0: the lookup stays; the one into r1 moves.
+  auto p = prologue("ps_2_0\ndcl t0\ndcl_2d s0\nmov r0, c0\ntexld r0, t0, s0\ntexld r1, t0, s0\n"
+                    "add r0, r0, r1\nmov oC0, r0\n");
+  ASSERT_TRUE(p);
+  ASSERT_EQ(p->lookups.size(), 1u);
+  EXPECT_EQ(p->lookups[0].index, 1);
+  // r0 read before the lookup into r0: it stays.
+  p = prologue("ps_2_0\ndcl t0\ndcl_2d s0\nadd r1, r0, c0\ntexld r0, t0, s0\nadd r0, r0, r1\nmov oC0, r0\n");
+  EXPECT_FALSE(p);
+  // Nothing moves past a kill.
+  p = prologue("ps_2_0\ndcl t0\ndcl_2d s0\ntexkill t0\ntexld r0, t0, s0\nmov oC0, r0\n");
+  EXPECT_FALSE(p);
+}
+
+TEST(TexturePrologue, NoneWithoutALeadingPlainLookup) {
+  EXPECT_FALSE(prologue("ps_1_1\nmov r0, v0\n"));
+  // texld_sat changes the result; texldp divides the coordinates; a swizzle changes them.
+  EXPECT_FALSE(prologue("ps_2_0\ndcl t0\ndcl_2d s0\ntexld_sat r0, t0, s0\nmov oC0, r0\n"));
+  EXPECT_FALSE(prologue("ps_2_0\ndcl t0\ndcl_2d s0\ntexldp r0, t0, s0\nmov oC0, r0\n"));
+  EXPECT_FALSE(prologue("ps_2_0\ndcl t0\ndcl_2d s0\ntexld r0, t0.yxzw, s0\nmov oC0, r0\n"));
+  // Flow control anywhere: none.
+  EXPECT_FALSE(prologue("ps_3_0\ndcl_texcoord0 v0\ndcl_2d s0\ntexld r0, v0, s0\nif_gt r0.x, r0.y\n"
+                        "mov r0, r0.y\nendif\nmov oC0, r0\n"));
+}
+
 }  // namespace
 }  // namespace refx::exec

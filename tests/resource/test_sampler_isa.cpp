@@ -362,9 +362,10 @@ TEST(SamplerIsaVariants, ImplicitPairGivesWhatEachSamplerGives) {
 }
 
 // The group lookups give for every batch what the reference gives (float results) or
-// what sampleImplicitArgb8 gives alone (bytes): groups of 1 to 8 batches mixing
-// screen-like footprints (the phases' case) with random, edge and special coordinates,
-// one or two textures of the same size or not, shared coordinates or not, lane masks.
+// what sampleImplicitArgb8 gives alone (bytes): groups of 1 to kMaxSampleGroup batches
+// mixing screen-like footprints (the phases' case) with random, edge and special
+// coordinates, one or two textures of the same size or not, shared coordinates or
+// not, lane masks.
 TEST(SamplerIsaVariants, GroupLookupsGiveWhatEachBatchGives) {
   const CpuIsa previous = activeIsa();
   const bool avx512 = detectedIsa() == CpuIsa::Avx512;
@@ -424,8 +425,11 @@ TEST(SamplerIsaVariants, GroupLookupsGiveWhatEachBatchGives) {
           alignas(64) uint32_t alone[N];
           const bool wrote = pa.sampleImplicitArgb8(ca[g][0], ca[g][1], masks[g], alone);
           ASSERT_EQ(bool(written >> g & 1), wrote) << "iter " << iter << " batch " << g;
-          for (int l = 0; l < N; ++l)
-            if (wrote && masks[g] >> l & 1) ASSERT_EQ(colors[g][l], alone[l]) << "iter " << iter << " batch " << g;
+          for (int l = 0; l < N; ++l) {
+            if (wrote && masks[g] >> l & 1) {
+              ASSERT_EQ(colors[g][l], alone[l]) << "iter " << iter << " batch " << g;
+            }
+          }
         }
         ++groups;
       }

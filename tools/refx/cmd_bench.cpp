@@ -29,6 +29,7 @@
 #include "refx/hlsl/compiler.h"
 #include "refx/pipeline/device.h"
 #include "refx/resource/image_io.h"
+#include "refx/resource/sampler.h"
 #include "refx/shader/assembler.h"
 #include "refx/shader/constant_table.h"
 #include "refx/scene/racorx_scene.h"
@@ -579,6 +580,7 @@ int runBench(const BenchOptions& o) {
             total.planCacheMisses += run.planCacheMisses;
             total.draws += run.draws;
             total.samplePassthroughDraws += run.samplePassthroughDraws;
+            total.groupedLookupDraws += run.groupedLookupDraws;
             total.programBuilds.insert(total.programBuilds.end(), run.programBuilds.begin(), run.programBuilds.end());
             const uint64_t lookups = total.planCacheHits + total.planCacheMisses;
             std::printf("  plan cache: %llu hits, %llu misses", static_cast<unsigned long long>(total.planCacheHits),
@@ -588,6 +590,10 @@ int runBench(const BenchOptions& o) {
               std::printf("; sample passthrough: %llu of %llu draws stored texture samples as bytes",
                           static_cast<unsigned long long>(total.samplePassthroughDraws),
                           static_cast<unsigned long long>(total.draws));
+            if (total.groupedLookupDraws)
+              std::printf("; grouped lookups: %llu of %llu draws sampled %d blocks at a time",
+                          static_cast<unsigned long long>(total.groupedLookupDraws),
+                          static_cast<unsigned long long>(total.draws), refx::kMaxSampleGroup);
             std::printf("\n  program builds: %zu\n", total.programBuilds.size());
             for (const DrawStats::ProgramBuild& b : total.programBuilds)
               std::printf("    %-32s %5d instructions %10.1f us  %s\n", b.name.c_str(), b.instructions,

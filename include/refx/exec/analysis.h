@@ -2,6 +2,7 @@
 // results.
 #pragma once
 #include <optional>
+#include <vector>
 
 #include "refx/exec/ir.h"
 
@@ -17,5 +18,26 @@ struct SamplePassthrough {
   int input = 0;
 };
 std::optional<SamplePassthrough> findSamplePassthrough(const Program& program);
+
+// The texture lookups a program can make before anything else: each reads an input
+// register as it is (Op::Tex, λ from quad derivatives, coordinates .xyzw unchanged),
+// writes all four components of a temporary or output register unchanged, and no
+// instruction before it writes its coordinates or reads or writes its result (and no
+// kill comes before it). Such lookups read nothing the program computes, so a caller
+// may make them for many batches at once (PreparedSampler::sampleImplicitGroup), in
+// their order, and then run `rest` (the program without them, same registers) on each
+// batch: the same results as the whole program. None when the program has flow
+// control or has no such lookup.
+struct TexturePrologue {
+  struct Lookup {
+    int sampler = 0;
+    int input = 0;  // the coordinates' input register
+    RegFile file = RegFile::Temp;  // the result's register
+    int index = 0;
+  };
+  std::vector<Lookup> lookups;
+  Program rest;
+};
+std::optional<TexturePrologue> findTexturePrologue(const Program& program);
 
 }  // namespace refx::exec

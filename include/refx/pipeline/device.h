@@ -57,6 +57,9 @@ struct DrawStats {
   // Draws whose pixel program only samples a 2D texture into an opaque 8-bit target,
   // run as the sample stored as bytes (the same pixels, without running the program).
   uint64_t samplePassthroughDraws = 0;
+  // Draws whose texture lookups were made for groups of blocks at once (the lookups a
+  // pixel program starts with, or a pass-through's), then the rest block by block.
+  uint64_t groupedLookupDraws = 0;
   // One entry per program translated for a plan: which program, how long the
   // translation took and what runs it ("jit-avx512", "jit-avx2", "interpreter").
   struct ProgramBuild {

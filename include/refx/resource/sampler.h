@@ -62,7 +62,8 @@ struct SampleBatch {
   const float (*coords)[kBatchLanes];
   float (*out)[kBatchLanes];
 };
-constexpr int kMaxSampleGroup = 8;
+// Four: the group's registers and footprints stay in the L1 cache with the texels.
+constexpr int kMaxSampleGroup = 4;
 
 // A texture and sampler state prepared for many requests (one draw): the checks
 // sampleTexture makes per call (addressing, filters, which levels the vectorised
