@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <map>
+#include <vector>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -101,7 +102,9 @@ class Generator {
     if (named[int(RegFile::Output)]) outputs_ = load(offsetof(JitFrame, outputs));
     if (named[int(RegFile::Const)]) constants_ = load(offsetof(JitFrame, constants));
     if (named[int(RegFile::Imm)] || named[int(RegFile::Const)]) immediates_ = load(offsetof(JitFrame, immediates));
+    findOverwrittenStores();
     for (size_t i = begin_; i < end_; ++i) {
+      current_ = i;
       if (i + 1 < end_ && pairable(program_.code[i], program_.code[i + 1])) {
         emitTexPair(uint32_t(i), uint32_t(i + 1));
         ++i;
@@ -120,6 +123,46 @@ class Generator {
   }
 
   // ------------------------------------------------------------------ selection
+
+  // Instructions whose code reads registers only through laneValue (the value this
+  // code last stored, or a load): no call, no helper reading registers in place.
+  bool readsThroughValues(const Instr& in) const {
+    if (!inlined(in) || sampledDirectly(in)) return false;
+    switch (in.op) {
+      case Op::Kill: case Op::Exp2: case Op::Log2: case Op::Pow: case Op::Lit: case Op::ExpP: case Op::SinCos:
+        return false;
+      default: break;
+    }
+    for (int i = 0; i < sourceCount(in.op); ++i)
+      if (fetchedByHelper(in.src[i])) return false;
+    return true;
+  }
+
+  // The component stores that a later instruction of this code overwrites before
+  // anything could read memory for them: only such instructions (readsThroughValues)
+  // lie in between, and they read the value held, not memory. overwritten_[i - begin_]
+  // bit c: instruction i's store of component c is left out. What a run leaves in every
+  // register is unchanged (the last store of each stays).
+  void findOverwrittenStores() {
+    overwritten_.assign(end_ - begin_, 0);
+    for (size_t i = begin_; i < end_; ++i) {
+      const Instr& in = program_.code[i];
+      if (!readsThroughValues(in) || in.op == Op::Kill || !isLaneFile(in.dst.file)) continue;
+      for (int c = 0; c < 4; ++c) {
+        if (!(in.dst.mask >> c & 1)) continue;
+        for (size_t j = i + 1; j < end_; ++j) {
+          const Instr& next = program_.code[j];
+          if (!readsThroughValues(next)) break;
+          // crs writes .xyz only (emitCrs)
+          const uint8_t stored = next.op == Op::Crs ? next.dst.mask & 0x7 : next.dst.mask;
+          if (next.dst.file == in.dst.file && next.dst.index == in.dst.index && (stored >> c & 1)) {
+            overwritten_[i - begin_] |= uint8_t(1u << c);
+            break;
+          }
+        }
+      }
+    }
+  }
 
   bool inlined(const Instr& in) const {
     switch (in.op) {
@@ -683,7 +726,9 @@ class Generator {
       // Fixed point of `quantize` fractional bits: nearbyint(v * 2^q) * 2^-q.
       if (in.quantize)
         v = mul(round(mul(v, splat(std::ldexp(1.0f, in.quantize))), 4), splat(std::ldexp(1.0f, -in.quantize)));
-      for (int h = 0; h < parts_; ++h) cc_.vmovups(lane(in.dst.file, in.dst.index, c, h), v.p[h]);
+      const bool overwritten = &in == &program_.code[current_] && (overwritten_[current_ - begin_] >> c & 1);
+      if (!overwritten)
+        for (int h = 0; h < parts_; ++h) cc_.vmovups(lane(in.dst.file, in.dst.index, c, h), v.p[h]);
       registers_[{int(in.dst.file), int(in.dst.index), c}] = v;
     }
   }
@@ -935,6 +980,8 @@ class Generator {
   bool gathered_[3] = {};  // … and those gathered natively (gatheredConstant)
   std::map<Key, V> values_;                   // see memo()
   std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
+  size_t current_ = 0;                  // the instruction being emitted
+  std::vector<uint8_t> overwritten_;    // see findOverwrittenStores()
   x86::Gp frame_, temps_, inputs_, outputs_, constants_, immediates_;
 };
 
