@@ -20,6 +20,21 @@ struct ColorVertex {  // D3DFVF_XYZ | D3DFVF_DIFFUSE
 };
 constexpr uint32_t kColorVertexFVF = d3d::FVF_XYZ | d3d::FVF_DIFFUSE;
 
+// A W x H A8R8G8B8 texture with a full mip chain of pseudo-random texels (a fixed LCG
+// from `seed`).
+inline TexturePtr noiseTexture(int w, int h, uint32_t seed = 12345) {
+  auto t = Texture::create2D(Format::A8R8G8B8, w, h, 0);
+  uint32_t x = seed;
+  for (int y = 0; y < h; ++y)
+    for (int i = 0; i < w; ++i) {
+      x = x * 1664525u + 1013904223u;
+      std::memcpy(t->data(0, 0) + y * t->rowPitch(0) + i * 4, &x, 4);
+    }
+  t->markDirty();
+  t->generateMips();
+  return t;
+}
+
 // A 1x1 A8R8G8B8 texture holding one texel.
 inline TexturePtr texel(uint32_t argb) {
   auto t = Texture::create2D(Format::A8R8G8B8, 1, 1, 1);

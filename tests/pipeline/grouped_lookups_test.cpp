@@ -46,20 +46,6 @@ const ShaderPair kShaders[] = {
      "lrp r0, c1, r0, r1\nmov oC0, r0\n"},
 };
 
-// A W x H texture with a full mip chain of pseudo-random texels (a fixed LCG).
-TexturePtr noiseTexture(int w, int h, uint32_t seed) {
-  auto t = Texture::create2D(Format::A8R8G8B8, w, h, 0);
-  uint32_t x = seed;
-  for (int y = 0; y < h; ++y)
-    for (int i = 0; i < w; ++i) {
-      x = x * 1664525u + 1013904223u;
-      std::memcpy(t->data(0, 0) + y * t->rowPitch(0) + i * 4, &x, 4);
-    }
-  t->markDirty();
-  t->generateMips();
-  return t;
-}
-
 struct Config {
   uint32_t filter, mipFilter, address;
   bool depth, blend, sameSize;

@@ -25,20 +25,6 @@ constexpr const char* kPassthrough = "ps.1.1\ntex t0\nmov r0, t0\n";
 // The same value: r1 = t0, r0 = r1 (each in [-1, 1], which keeps the sample as it is).
 constexpr const char* kRunsTheProgram = "ps.1.1\ntex t0\nmov r1, t0\nmov r0, r1\n";
 
-// A W x H texture with a full mip chain of pseudo-random texels (a fixed LCG).
-TexturePtr noiseTexture(int w, int h) {
-  auto t = Texture::create2D(Format::A8R8G8B8, w, h, 0);
-  uint32_t x = 12345;
-  for (int y = 0; y < h; ++y)
-    for (int i = 0; i < w; ++i) {
-      x = x * 1664525u + 1013904223u;
-      std::memcpy(t->data(0, 0) + y * t->rowPitch(0) + i * 4, &x, 4);
-    }
-  t->markDirty();
-  t->generateMips();
-  return t;
-}
-
 struct Config {
   Format target;
   uint32_t minFilter, magFilter, mipFilter, address;
