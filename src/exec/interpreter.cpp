@@ -172,16 +172,6 @@ inline v8f splat8(float x) { return v8f{x, x, x, x, x, x, x, x}; }
 inline v8f vmin(v8f a, v8f b) { return a < b ? a : b; }
 inline v8f vmax(v8f a, v8f b) { return a > b ? a : b; }
 
-// Lanes a texture lookup must produce: every lane of a 2x2 quad with a live lane.
-// Helper pixels outside the primitive still compute values, so the derivatives of a
-// dependent read (texture result used as coordinates) stay those of the surface.
-inline uint16_t quadLanes(uint16_t live) {
-  uint16_t m = 0;
-  for (int q = 0; q < N / 4; ++q)
-    if ((live >> (4 * q)) & 0xF) m |= uint16_t(0xF << (4 * q));
-  return m;
-}
-
 void sample(const Instr& in, const Operand* src, const ExecContext& ctx, uint16_t laneMask,
             float (*out)[N]) {
   alignas(64) float co[12][N];

@@ -81,6 +81,14 @@ inline void store8(float* p, v8f v) { std::memcpy(p, &v, sizeof v); }
 // x in every lane (a broadcast: -0 stays -0, unlike 0 + x).
 inline v8f bcast(float x) { return v8f{x, x, x, x, x, x, x, x}; }
 
+// The lanes' pixel offsets from a primitive's origin, (ox, oy) being the block's.
+inline void laneOffsets(float ox, float oy, v8f (&fx)[2], v8f (&fy)[2]) {
+  for (int h = 0; h < 2; ++h) {
+    fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
+    fy[h] = bcast(oy) + load8(kLaneYf + 8 * h);
+  }
+}
+
 // value[l] = (base + dx*fx[l] + dy*fy[l]) * scale[l]; no scale: the same without the
 // multiply by one.
 inline void evalPlane(const float* pl, const v8f (&fx)[2], const v8f (&fy)[2],
@@ -124,10 +132,7 @@ template <uint32_t F, bool Write>
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
   fillLeft = w.lazyFill.parts && w.pending.take(bx, by) ? w.lazyFill.parts : 0;
   v8f fx[2], fy[2];
-  for (int h = 0; h < 2; ++h) {
-    fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
-    fy[h] = bcast(oy) + load8(kLaneYf + 8 * h);
-  }
+  laneOffsets(ox, oy, fx, fy);
   evalPlane(pl, fx, fy, nullptr, w.invW);
   const v8f zero{}, one = zero + 1.0f;
   if (any ? d.depthTest || d.usesPosition : F != kNoDepth) {  // z is read by the depth test and vPos only
@@ -217,10 +222,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       // The position's z is the interpolated z, also when the depth buffer holds w.
       if (d.wBuffer) {
         v8f fx[2], fy[2];
-        for (int h = 0; h < 2; ++h) {
-          fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
-          fy[h] = bcast(oy) + load8(kLaneYf + 8 * h);
-        }
+        laneOffsets(ox, oy, fx, fy);
         evalPlane(pl + 3, fx, fy, nullptr, pos.c[2]);
       }
       for (int l = 0; l < N; ++l) {
@@ -246,15 +248,6 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
     }
   }
   leaveBatch<Opaque>(d, p, bx, by, mask, w.regs, w.z, fillLeft, isPacked ? packed : nullptr, shaded);
-}
-
-// Lanes a texture lookup produces: every lane of a 2x2 quad with a live lane (as the
-// program's own lookups ask for them).
-inline uint16_t quadLanes(uint16_t live) {
-  uint16_t m = 0;
-  for (int q = 0; q < N / 4; ++q)
-    if ((live >> (4 * q)) & 0xF) m |= uint16_t(0xF << (4 * q));
-  return m;
 }
 
 // shadeBatch for up to kMaxSampleGroup blocks of one primitive whose texture lookups
@@ -313,7 +306,7 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
         for (uint32_t& c : slot.packed) c |= 0xff000000u;
     }
   } else {
-    for (int g = 0; g < n; ++g) lanes[g] = quadLanes(items[g].mask);
+    for (int g = 0; g < n; ++g) lanes[g] = exec::quadLanes(items[g].mask);
     const auto batchesOf = [&](const RasterDraw::PrologueLookup& l, SampleBatch* batches) {
       for (int g = 0; g < n; ++g) {
         exec::BatchRegisters& regs = w.group[size_t(g)].regs;

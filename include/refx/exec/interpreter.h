@@ -23,6 +23,16 @@ struct alignas(64) LaneVec4 {
 // along screen x, 8..11 along y; a binding without gradient support may treat it as
 // Implicit.
 enum class SampleMode : uint8_t { Implicit, Projected, Bias, Lod, Grad };
+// Lanes a texture lookup asks its sampler for: every lane of a 2x2 quad with a live
+// lane. Helper pixels outside the primitive still compute values, so the derivatives
+// of a dependent read (texture result used as coordinates) stay those of the surface.
+inline uint16_t quadLanes(uint16_t live) {
+  uint16_t m = 0;
+  for (int q = 0; q < kBatchLanes / 4; ++q)
+    if ((live >> (4 * q)) & 0xF) m |= uint16_t(0xF << (4 * q));
+  return m;
+}
+
 struct SamplerBinding {
   const void* context = nullptr;
   void (*sample)(const void* context, SampleMode mode, const float (*coords)[kBatchLanes],
