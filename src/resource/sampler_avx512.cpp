@@ -149,27 +149,9 @@ inline void loadPairs16(const uint32_t* texels, v16i a, v16u& first, v16u& secon
 // (loadQuads8 of sampler.cpp, 16 lanes). Faster than four vpgatherdq on current cores.
 inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& p10, v16u& p01,
                         v16u& p11) {
-#ifdef EXP_EXTRACT
-  int ix[16];
-  {
-    const __m512i z = __m512i(a);
-    for (int b = 0; b < 4; ++b) {
-      const __m128i q = _mm512_extracti32x4_epi32(z, 0);
-      const __m128i qq = b == 0 ? _mm512_castsi512_si128(z) : b == 1 ? _mm512_extracti32x4_epi32(z, 1) : b == 2 ? _mm512_extracti32x4_epi32(z, 2) : _mm512_extracti32x4_epi32(z, 3);
-      (void)q;
-      ix[4*b] = _mm_cvtsi128_si32(qq); ix[4*b+1] = _mm_extract_epi32(qq, 1); ix[4*b+2] = _mm_extract_epi32(qq, 2); ix[4*b+3] = _mm_extract_epi32(qq, 3);
-    }
-  }
-#elif defined(EXP_STORE256)
-  alignas(64) int ix[16];
-  _mm256_store_si256((__m256i*)ix, _mm512_castsi512_si256(__m512i(a)));
-  _mm256_store_si256((__m256i*)(ix + 8), _mm512_extracti64x4_epi64(__m512i(a), 1));
-  asm volatile("" ::: "memory");
-#else
   alignas(64) int ix[16];
   std::memcpy(ix, &a, sizeof ix);
   asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
-#endif
   // The bottom row from its own base register: both loads of a lane take its index as
   // is, with no address arithmetic per lane (the compiler would otherwise add w to it).
   const uint32_t* below = texels + w;
