@@ -105,6 +105,7 @@ void bindPixelStage(const DrawPlan& plan, const DeviceState& st, PixelBindings& 
     d.execContext.boolConstantCount = int(st.psConstB.size());
   }
   d.inputs = plan.inputs;
+  d.inputCopies.clear();  // setupPrimitives finds them
   d.passthroughSampler = nullptr;
   if (plan.samplePassthrough) {
     const BoundSampler& bound = b.bound[size_t(plan.samplePassthrough->sampler)];

@@ -240,6 +240,34 @@ Rect activeRect(const DeviceState& s, int w, int h) {
   return r;
 }
 
+namespace {
+
+// RasterDraw::inputCopies: inputs that receive the same value at every vertex (a vertex
+// shader's mov oT0.xy, v7 and mov oT1.xy, v7) get the same planes, as clipping and setup
+// treat every varying alike; point sprites replace texture coordinates, so none there.
+void findInputCopies(RasterDraw& d, const std::vector<ShadedVertex>& verts, bool sprites) {
+  d.inputCopies.assign(d.inputs.size(), -1);
+  if (sprites) return;
+  for (size_t k = 1; k < d.inputs.size(); ++k) {
+    const InterpolatedInput& b = d.inputs[k];
+    for (size_t j = 0; j < k && d.inputCopies[k] < 0; ++j) {
+      const InterpolatedInput& a = d.inputs[j];
+      if (d.inputCopies[j] >= 0 || a.flat != b.flat || a.wrap != b.wrap) continue;
+      bool same = true;
+      for (const ShadedVertex& v : verts) {
+        const float x = v.out[a.varying][a.component], y = v.out[b.varying][b.component];
+        if (std::memcmp(&x, &y, sizeof x) != 0) {
+          same = false;
+          break;
+        }
+      }
+      if (same) d.inputCopies[k] = int(j);
+    }
+  }
+}
+
+}  // namespace
+
 void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPointSize,
                      PrimitiveType type, uint32_t primitiveCount, const DrawIndices& indices,
                      const std::vector<ShadedVertex>& verts, RasterDraw& d) {
@@ -266,6 +294,7 @@ void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPoint
     return size >= 1.0f ? std::min(size, deviceMaxPointSize) : 1.0f;  // NaN: 1
   };
   const bool pointSprite = st.rs(RS_POINTSPRITEENABLE) != 0;
+  findInputCopies(d, verts, pointSprite);
 
   auto toScreen = [&](const Vec4* out, SetupVertex& s) {
     const Vec4& p = out[0];

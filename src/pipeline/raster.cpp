@@ -81,6 +81,19 @@ inline void store8(float* p, v8f v) { std::memcpy(p, &v, sizeof v); }
 // x in every lane (a broadcast: -0 stays -0, unlike 0 + x).
 inline v8f bcast(float x) { return v8f{x, x, x, x, x, x, x, x}; }
 
+// Whether every lane of a comparison's result is true.
+inline bool allLanes(v8i m) {
+#if defined(__AVX__)
+  __m256 f;
+  std::memcpy(&f, &m, sizeof f);
+  return _mm256_movemask_ps(f) == 0xff;
+#else
+  for (int l = 0; l < 8; ++l)
+    if (!m[l]) return false;
+  return true;
+#endif
+}
+
 // The lanes' pixel offsets from a primitive's origin, (ox, oy) being the block's.
 inline void laneOffsets(float ox, float oy, v8f (&fx)[2], v8f (&fy)[2]) {
   for (int h = 0; h < 2; ++h) {
@@ -104,14 +117,25 @@ inline void evalPlane(const float* pl, const v8f (&fx)[2], const v8f (&fy)[2],
 void interpolateInputsAvx2(const float* planes, const InputTarget* targets, size_t count, float ox,
                            float oy, const float* invW, float* w) {
   v8f fx[2], fy[2], wv[2];
+  laneOffsets(ox, oy, fx, fy);
+  bool unitW = true;
   for (int h = 0; h < 2; ++h) {
-    fx[h] = bcast(ox) + load8(kLaneXf + 8 * h);
-    fy[h] = bcast(oy) + load8(kLaneYf + 8 * h);
-    wv[h] = bcast(1.0f) / load8(invW + 8 * h);
+    const v8f iw = load8(invW + 8 * h);
+    unitW = unitW && allLanes(iw == bcast(1.0f));
+    wv[h] = iw;
+  }
+  for (int h = 0; h < 2; ++h) {
+    wv[h] = unitW ? bcast(1.0f) : bcast(1.0f) / wv[h];
     store8(w + 8 * h, wv[h]);
   }
-  for (size_t i = 0; i < count; ++i, planes += 3)
-    evalPlane(planes, fx, fy, targets[i].flat ? nullptr : wv, targets[i].lanes);
+  for (size_t i = 0; i < count; ++i, planes += 3) {
+    if (targets[i].sameAs >= 0) {
+      const float* from = targets[targets[i].sameAs].lanes;
+      for (int h = 0; h < 2; ++h) store8(targets[i].lanes + 8 * h, load8(from + 8 * h));
+      continue;
+    }
+    evalPlane(planes, fx, fy, targets[i].flat || unitW ? nullptr : wv, targets[i].lanes);
+  }
 }
 
 // What shadeBatch is compiled for: kAnyState reads the draw's state at run time (every
@@ -438,6 +462,12 @@ void applyFill(const RasterDraw::Fill& fill, DepthStencilSurface* depth, int x0,
 
 namespace {
 
+// The interpolation targets' sameAs from the draw's input copies.
+void setCopies(const RasterDraw& draw, std::vector<InputTarget>& targets) {
+  for (size_t i = 0; i < targets.size(); ++i)
+    targets[i].sameAs = i < draw.inputCopies.size() ? draw.inputCopies[i] : -1;
+}
+
 // The registers of a worker's group slots, as the worker's own for the whole program
 // (rasterize), prepared for the program without its lookups.
 void prepareGroup(const RasterDraw& draw, TileWorker& w, exec::ProgramBuildInfo* build) {
@@ -453,6 +483,7 @@ void prepareGroup(const RasterDraw& draw, TileWorker& w, exec::ProgramBuildInfo*
     slot.inputTargets.clear();
     for (const InterpolatedInput& in : draw.inputs)
       slot.inputTargets.push_back({slot.regs.inputs[in.input].c[in.component], in.flat});
+    setCopies(draw, slot.inputTargets);
     slot.passTargets[0] = {slot.passU, false};
     slot.passTargets[1] = {slot.passV, false};
   }
@@ -488,6 +519,7 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
     w.passTargets[1] = {w.passV, false};
     for (const InterpolatedInput& in : draw.inputs)
       w.inputTargets.push_back({w.regs.inputs[in.input].c[in.component], in.flat});
+    setCopies(draw, w.inputTargets);
   }
   std::vector<uint64_t> shaded(threads, 0);
   const ShadeTileFn tileLoop = chooseShadeTile(draw);

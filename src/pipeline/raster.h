@@ -79,6 +79,9 @@ struct RasterDraw {
   const exec::Program* pixelProgram = nullptr;
   exec::ExecContext execContext;
   std::vector<InterpolatedInput> inputs;
+  // Per input: an earlier one whose planes are its own in every primitive (the same
+  // values at every vertex, the same flags), or -1 (setupPrimitives).
+  std::vector<int> inputCopies;
   bool usesPosition = false;  // pixel input exec::kPixelInPosition read
   bool usesFace = false;      // pixel input exec::kPixelInFace read (vFace: +1 clockwise, -1 not)
   bool shaderDepth = false;   // the program writes the depth (output exec::kPixelOutDepth .x)

@@ -4,6 +4,8 @@
 // Compiled with AVX-512 flags (CMakeLists.txt: sources named *_avx512.cpp) and called
 // only where the CPU has them (chooseInterpolateInputs); it uses no function shared
 // with other translation units, so none of them can end up with an AVX-512 copy.
+#include <immintrin.h>
+
 #include <cstring>
 
 #include "raster_interpolate.h"
@@ -32,11 +34,17 @@ inline v16f bcast16(float x) { return v16f{x, x, x, x, x, x, x, x, x, x, x, x, x
 void interpolateInputsAvx512(const float* planes, const InputTarget* targets, size_t count, float ox,
                              float oy, const float* invW, float* w) {
   const v16f fx = bcast16(ox) + load16(kLaneXf), fy = bcast16(oy) + load16(kLaneYf);
-  const v16f wv = bcast16(1.0f) / load16(invW);
+  const v16f one = bcast16(1.0f), iw = load16(invW);
+  const bool unitW = _mm512_cmp_ps_mask(__m512(iw), __m512(one), _CMP_EQ_OQ) == 0xffff;
+  const v16f wv = unitW ? one : one / iw;
   store16(w, wv);
   for (size_t i = 0; i < count; ++i, planes += 3) {
+    if (targets[i].sameAs >= 0) {
+      store16(targets[i].lanes, load16(targets[targets[i].sameAs].lanes));
+      continue;
+    }
     v16f r = bcast16(planes[0]) + bcast16(planes[1]) * fx + bcast16(planes[2]) * fy;
-    if (!targets[i].flat) r = r * wv;
+    if (!targets[i].flat && !unitW) r = r * wv;
     store16(targets[i].lanes, r);
   }
 }

@@ -13,11 +13,16 @@ namespace refx::pipeline {
 struct InputTarget {
   float* lanes;
   bool flat;  // the plane holds the value itself, not value/w
+  // An earlier target whose plane is this one's in every primitive of the draw
+  // (RasterDraw::inputCopies): its values are copied, not computed again. -1: none.
+  int sameAs = -1;
 };
 
 // For a batch whose top-left pixel is (ox, oy) from the primitive's plane origin:
 // w[l] = 1 / invW[l], then for input i (planes: 3 floats each, base, d/dx, d/dy)
 // value[l] = base + dx*(ox + laneX[l]) + dy*(oy + laneY[l]), times w[l] unless flat.
+// Where invW is 1 in every lane (an affine primitive with w = 1, such as a clip-space
+// quad) w is 1 and the product by it, an identity in IEEE arithmetic, is left out.
 using InterpolateInputsFn = void (*)(const float* planes, const InputTarget* targets, size_t count,
                                      float ox, float oy, const float* invW, float* w);
 

@@ -37,25 +37,68 @@ constexpr int kLaneX[kBatchLanes] = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2
 constexpr int kLaneY[kBatchLanes] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
 
 // value = base + dx*(ox + laneX) + dy*(oy + laneY), left to right, times 1/invW unless flat.
-void checkVariant(InterpolateInputsFn fn, const Case& c) {
+// copyLast: the last input is marked as the same as the first (InputTarget::sameAs) and
+// its plane is garbage: it must get the first one's values.
+void checkVariant(InterpolateInputsFn fn, const Case& c, bool copyLast = false) {
   const size_t n = c.flat.size();
   std::vector<std::array<float, kBatchLanes>> out(n);
   std::vector<InputTarget> targets;
   for (size_t i = 0; i < n; ++i) targets.push_back({out[i].data(), bool(c.flat[i])});
+  std::vector<float> planes = c.planes;
+  if (copyLast && n > 1) {
+    targets.back().sameAs = 0;
+    for (int k = 0; k < 3; ++k) planes[3 * (n - 1) + size_t(k)] = 1e30f;
+  }
   alignas(64) float w[kBatchLanes];
-  fn(c.planes.data(), targets.data(), n, c.ox, c.oy, c.invW, w);
+  fn(planes.data(), targets.data(), n, c.ox, c.oy, c.invW, w);
   for (int l = 0; l < kBatchLanes; ++l) {
     const float fx = c.ox + float(kLaneX[l]), fy = c.oy + float(kLaneY[l]);
     const float wl = 1.0f / c.invW[l];
     EXPECT_EQ(std::memcmp(&w[l], &wl, 4), 0) << "w lane " << l;
     for (size_t i = 0; i < n; ++i) {
-      const float* p = &c.planes[3 * i];
+      const size_t from = copyLast && n > 1 && i == n - 1 ? 0 : i;
+      const float* p = &c.planes[3 * from];
       float v = p[0] + p[1] * fx;
       v = v + p[2] * fy;
-      if (!c.flat[i]) v = v * wl;
+      if (!c.flat[from]) v = v * wl;
       EXPECT_EQ(std::memcmp(&out[i][l], &v, 4), 0) << "input " << i << " lane " << l << ": " << out[i][l] << " vs " << v;
     }
   }
+}
+
+// invW = 1 in every lane (an affine primitive with w = 1): w = 1 and the values are the
+// planes' own (x * 1 = x), whichever way a variant gets there.
+TEST(RasterInterpolate, UnitWGivesThePlanesValues) {
+  std::mt19937 rng(9);
+  const CpuIsa saved = activeIsa();
+  for (int round = 0; round < 20; ++round) {
+    Case c = randomCase(rng, 1 + round % 7);
+    for (float& v : c.invW) v = 1.0f;
+    if (round % 2) c.invW[round % kBatchLanes] = 0.5f;  // one lane off: the general path
+    setActiveIsa(CpuIsa::Avx2);
+    checkVariant(chooseInterpolateInputs(), c);
+    if (detectedIsa() == CpuIsa::Avx512) {
+      setActiveIsa(CpuIsa::Avx512);
+      checkVariant(chooseInterpolateInputs(), c);
+    }
+  }
+  setActiveIsa(saved);
+}
+
+// A target marked sameAs another gets that one's values, not its own plane's.
+TEST(RasterInterpolate, CopiedInputsGetTheirSourcesValues) {
+  std::mt19937 rng(11);
+  const CpuIsa saved = activeIsa();
+  for (int round = 0; round < 20; ++round) {
+    const Case c = randomCase(rng, 2 + round % 6);
+    setActiveIsa(CpuIsa::Avx2);
+    checkVariant(chooseInterpolateInputs(), c, true);
+    if (detectedIsa() == CpuIsa::Avx512) {
+      setActiveIsa(CpuIsa::Avx512);
+      checkVariant(chooseInterpolateInputs(), c, true);
+    }
+  }
+  setActiveIsa(saved);
 }
 
 TEST(RasterInterpolate, BothVariantsGiveTheFormulasValues) {
