@@ -204,18 +204,27 @@ template <bool Opaque>
       fillBlock(d, bx, by, fillLeft);
       return;
     }
+    const ColorTarget& t = d.targets[0];
     if (packed)
-      storePackedOver(d.targets[0], bx, by, mask, packed, d.fill.colorValue);
+      storePackedOver(t, bx, by, mask, packed, d.fill.colorValue);
+    else if (d.opaqueBlockStore)  // the fill's blocks are whole ones inside the target
+      d.opaqueBlockStore(t.data + size_t(by) * size_t(t.pitch) + size_t(bx) * 4, t.pitch, t.hasAlpha, mask, color,
+                         &d.fill.colorValue);
     else
-      storeOpaqueOver(d.targets[0], bx, by, mask, color, d.fill.colorValue);
+      storeOpaqueOver(t, bx, by, mask, color, d.fill.colorValue);
     return;
   }
   if (!mask) return;
-  if (packed)
+  if (packed) {
     storePacked(d.targets[0], d.width, d.height, bx, by, mask, packed);
-  else if constexpr (Opaque)
-    storeOpaque(d.targets[0], d.width, d.height, bx, by, mask, color);
-  else
+  } else if constexpr (Opaque) {
+    const ColorTarget& t = d.targets[0];
+    if (d.opaqueBlockStore && bx + 4 <= d.width && by + 4 <= d.height)
+      d.opaqueBlockStore(t.data + size_t(by) * size_t(t.pitch) + size_t(bx) * 4, t.pitch, t.hasAlpha, mask, color,
+                         nullptr);
+    else
+      storeOpaque(t, d.width, d.height, bx, by, mask, color);
+  } else
     (d.merge ? d.merge : mergeBatch)(d, bx, by, mask, regs.outputs.data(), z, d.earlyDepth, p.counterClockwise);
 }
 
@@ -522,6 +531,7 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
     setCopies(draw, w.inputTargets);
   }
   std::vector<uint64_t> shaded(threads, 0);
+  draw.opaqueBlockStore = activeIsa() == CpuIsa::Avx512 ? storeOpaqueBlockAvx512 : nullptr;
   const ShadeTileFn tileLoop = chooseShadeTile(draw);
   // Groups are for the tile loops compiled for a state (shadeGroup).
   draw.groupedLookups =

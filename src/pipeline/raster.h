@@ -12,6 +12,7 @@
 #include "refx/exec/interpreter.h"
 #include "refx/pipeline/device.h"
 #include "refx/resource/sampler.h"
+#include "raster_store.h"
 
 namespace refx::pipeline {
 
@@ -79,6 +80,9 @@ struct RasterDraw {
   const exec::Program* pixelProgram = nullptr;
   exec::ExecContext execContext;
   std::vector<InterpolatedInput> inputs;
+  // The opaque store of whole blocks inside target 0 for the active instruction set
+  // (rasterize); null: merge_kernels.h's.
+  OpaqueBlockStoreFn opaqueBlockStore = nullptr;
   // Per input: an earlier one whose planes are its own in every primitive (the same
   // values at every vertex, the same flags), or -1 (setupPrimitives).
   std::vector<int> inputCopies;

@@ -4,11 +4,19 @@
 // Compiled with AVX-512 flags (CMakeLists.txt: sources named *_avx512.cpp) and called
 // only where the CPU has them (chooseInterpolateInputs); it uses no function shared
 // with other translation units, so none of them can end up with an AVX-512 copy.
+// GCC 12's AVX-512 intrinsics warn about their own undefined pass-through operands.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#if !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <immintrin.h>
+#pragma GCC diagnostic pop
 
 #include <cstring>
 
 #include "raster_interpolate.h"
+#include "raster_store.h"
 
 namespace refx::pipeline {
 
@@ -46,6 +54,42 @@ void interpolateInputsAvx512(const float* planes, const InputTarget* targets, si
     v16f r = bcast16(planes[0]) + bcast16(planes[1]) * fx + bcast16(planes[2]) * fy;
     if (!targets[i].flat && !unitW) r = r * wv;
     store16(targets[i].lanes, r);
+  }
+}
+
+void storeOpaqueBlockAvx512(uint8_t* topLeft, int pitch, bool hasAlpha, uint16_t mask,
+                            const float (*color)[kBatchLanes], const uint32_t* under) {
+  // toUnorm8x8 per channel: vmaxps/vminps with 0 and 1 second (NaN and -0 give 0),
+  // then v * 255 + 0.5 truncated.
+  __m512i q[4];
+  for (int c = 0; c < 4; ++c) {
+    __m512 v = _mm512_loadu_ps(color[c]);
+    v = _mm512_min_ps(_mm512_max_ps(v, _mm512_setzero_ps()), _mm512_set1_ps(1.0f));
+    v = _mm512_add_ps(_mm512_mul_ps(v, _mm512_set1_ps(255.0f)), _mm512_set1_ps(0.5f));
+    q[c] = _mm512_cvttps_epi32(v);
+  }
+  const __m512i alpha = hasAlpha ? _mm512_slli_epi32(q[3], 24) : _mm512_set1_epi32(int(0xff000000u));
+  // alpha | r << 16 | g << 8 | b, as two three-way ORs.
+  const __m512i rg = _mm512_or_si512(_mm512_slli_epi32(q[0], 16), _mm512_slli_epi32(q[1], 8));
+  __m512i packed = _mm512_ternarylogic_epi32(alpha, rg, q[2], 0xfe);
+  // Quad-major lanes (core/batch.h) to rows: row r is lanes 0,1,4,5 / 2,3,6,7 / 8,9,12,13
+  // / 10,11,14,15.
+  const __m512i rows = _mm512_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7, 8, 9, 12, 13, 10, 11, 14, 15);
+  packed = _mm512_permutexvar_epi32(rows, packed);
+  // The mask's bits in row order, as the lanes above.
+  const __m512i bit = _mm512_permutexvar_epi32(rows, _mm512_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024,
+                                                                        2048, 4096, 8192, 16384, 32768));
+  const __mmask16 rowMask = _mm512_test_epi32_mask(bit, _mm512_set1_epi32(mask));
+  if (under) packed = _mm512_mask_blend_epi32(rowMask, _mm512_set1_epi32(int(*under)), packed);
+  const __m128i part[4] = {_mm512_castsi512_si128(packed), _mm512_extracti32x4_epi32(packed, 1),
+                           _mm512_extracti32x4_epi32(packed, 2), _mm512_extracti32x4_epi32(packed, 3)};
+  const bool whole = under || rowMask == 0xffff;
+  for (int r = 0; r < 4; ++r) {
+    uint8_t* dst = topLeft + size_t(r) * size_t(pitch);
+    if (whole)
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), part[r]);
+    else  // EVEX masked stores: one µop, unlike vpmaskmovd
+      _mm_mask_storeu_epi32(dst, __mmask8(rowMask >> (4 * r) & 0xf), part[r]);
   }
 }
 
