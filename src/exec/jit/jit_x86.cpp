@@ -565,6 +565,18 @@ class Generator {
   V sub(const V& a, const V& b) { return op2(x86::Inst::kIdVsubps, a, b); }
   V mul(const V& a, const V& b) { return op2(x86::Inst::kIdVmulps, a, b); }
   V div(const V& a, const V& b) { return op2(x86::Inst::kIdVdivps, a, b); }
+  // a * b + c in one rounding (vfmadd213ps). Only where a * b is exact, such as b = ±2,
+  // is it the interpreter's product then sum.
+  V mulAddExact(const V& a, const V& b, const V& c) {
+    return memo({2, x86::Inst::kIdVfmadd213ps, id(a), id(b), id(c)}, [&] {
+      V r = newV();
+      for (int h = 0; h < parts_; ++h) {
+        cc_.emit(x86::Inst::kIdVmovaps, r.p[h], a.p[h]);
+        cc_.emit(x86::Inst::kIdVfmadd213ps, r.p[h], b.p[h], c.p[h]);
+      }
+      return r;
+    });
+  }
   // a < b ? a : b and a > b ? a : b, as minps/maxps (NaN: b).
   V min(const V& a, const V& b) { return op2(x86::Inst::kIdVminps, a, b); }
   V max(const V& a, const V& b) { return op2(x86::Inst::kIdVmaxps, a, b); }
@@ -659,6 +671,9 @@ class Generator {
       if (affine_ && affineSourceModifier(s.mod, k, o)) {
         // The prepared path: v * k + o (o = -0 adds nothing; so does * 1 before an
         // add, which quiets a signalling NaN as the multiplication would).
+        // v * ±2 is exact (a change of exponent; overflow gives the same infinity
+        // either way), so one fused rounding is the same as the two.
+        if ((k == 2.0f || k == -2.0f) && o != 0.0f) return mulAddExact(v, splat(k), splat(o));
         if (k != 1.0f) v = mul(v, splat(k));
         return o == 0.0f ? v : add(v, splat(o));
       }
