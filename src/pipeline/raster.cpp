@@ -362,14 +362,17 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
       }
     }
   }
+  // The rest of the program for every block, then the stores: the blocks' programs side
+  // by side overlap (each is a chain of dependent operations).
+  if (!passthrough)
+    for (int g = 0; g < n; ++g) {
+      GroupSlot& slot = w.group[size_t(g)];
+      slot.regs.laneMask = items[g].mask;
+      exec::execute(*d.pixelRest, d.execContext, slot.regs);
+    }
   for (int g = 0; g < n; ++g) {
     GroupSlot& slot = w.group[size_t(g)];
-    uint16_t mask = items[g].mask;
-    if (!passthrough) {
-      slot.regs.laneMask = mask;
-      exec::execute(*d.pixelRest, d.execContext, slot.regs);
-      mask &= slot.regs.laneMask;
-    }
+    const uint16_t mask = passthrough ? items[g].mask : uint16_t(items[g].mask & slot.regs.laneMask);
     leaveBatch<Opaque>(d, p, items[g].bx, items[g].by, mask, slot.regs, slot.z, items[g].fillLeft,
                        packedDone >> g & 1 ? slot.packed : nullptr, shaded);
   }
