@@ -193,6 +193,45 @@ TEST(JitIdentity, RandomPrograms) {
   }
 }
 
+// Arithmetic chains whose clamped results feed later clamps (ps_1_x's range clamp,
+// saturate): the code leaves out a clamp where the value's known range (from earlier
+// clamps, constants and the ops between) proves it changes nothing. On special values
+// (signed zeros, infinities, NaN, huge values) every such clamp must still give the
+// interpreter's bits.
+TEST(JitIdentity, ClampedArithmeticChainsOnSpecialValues) {
+  const auto isas = availableIsas();
+  if (isas.empty()) GTEST_SKIP() << "no AVX2 on this CPU";
+  static const Op kOps[] = {Op::Mov, Op::Add, Op::Sub, Op::Mul, Op::Mad, Op::Dp3, Op::Dp4, Op::Lrp};
+  std::mt19937 rng(1128);
+  auto pick = [&](int n) { return int(rng() % uint32_t(n)); };
+  for (int n = 0; n < 1500; ++n) {
+    Program p = randomShell(rng);
+    const int count = 2 + pick(10);
+    for (int k = 0; k < count; ++k) {
+      Instr in = randomInstruction(rng);
+      in.op = kOps[pick(int(std::size(kOps)))];
+      in.quantize = 0;
+      switch (pick(4)) {
+        case 0: in.saturate = true, in.clamp = false; break;
+        case 1: in.saturate = false, in.clamp = true, in.clampLo = -1, in.clampHi = 1; break;
+        case 2: in.saturate = false, in.clamp = true, in.clampLo = -8, in.clampHi = 8; break;
+        default: break;
+      }
+      // Mostly temporaries, so clamped results feed the next instructions.
+      for (Src& src : in.src)
+        if (pick(3)) src.file = RegFile::Temp, src.index = uint16_t(pick(4)), src.flags = 0;
+      p.code.push_back(in);
+    }
+    Ranges ranges;
+    ranges.specialValues = n % 2 == 0;
+    for (auto isa : isas) {
+      const Outcome o = compare(p, isa, uint32_t(n), ranges);
+      ASSERT_NE(o.backend, "interpreter");
+      ASSERT_EQ(o.mismatch, "") << "program " << n << " (" << isaName(isa) << ")\n" << listProgram(p);
+    }
+  }
+}
+
 // The ops native code runs without the interpreter's routine, inline or through a
 // lane helper sharing the interpreter's libm calls: random programs of them on
 // special values (zeros of both signs, infinities, NaN, denormals, huge values,

@@ -7,6 +7,7 @@
 #include <asmjit/x86.h>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <map>
 #include <vector>
@@ -552,14 +553,71 @@ class Generator {
   V splat(float x) {
     uint32_t bits;
     std::memcpy(&bits, &x, sizeof bits);
-    return splatBits(bits);
+    const V v = splatBits(bits);
+    if (std::isfinite(x)) ranges_.try_emplace(id(v), Range{double(x), double(x)});
+    return v;
   }
   V op2(InstId inst, const V& a, const V& b) {
     return memo({2, inst, id(a), id(b)}, [&] {
       V r = newV();
       for (int h = 0; h < parts_; ++h) cc_.emit(inst, r.p[h], a.p[h], b.p[h]);
+      noteRange(r, inst, a, b);
       return r;
     });
+  }
+
+  // ------------------------------------------------------------------ value ranges
+
+  // What is known of a value: every lane a number (no NaN) in [lo, hi], bounds on the
+  // exact results of the operations that made it. The IEEE result of an operation on
+  // such values lies within the rounded bounds (rounding is monotone), so a clamp to
+  // float bounds that contain them changes no lane (storeClamped).
+  struct Range {
+    double lo, hi;
+  };
+  const Range* rangeOf(const V& v) const {
+    const auto it = ranges_.find(id(v));
+    return it == ranges_.end() ? nullptr : &it->second;
+  }
+  void setRange(const V& v, double lo, double hi) {
+    if (std::fabs(lo) < 1e30 && std::fabs(hi) < 1e30) ranges_[id(v)] = {lo, hi};  // far from overflow
+  }
+  // a + b and a * b in double, rounded down or up where inexact (the error terms of
+  // TwoSum and of an FMA), so the bounds hold for the exact results.
+  static double sumBound(double a, double b, bool up) {
+    const double s = a + b, bb = s - a, e = (a - (s - bb)) + (b - bb);
+    return up ? (e > 0 ? std::nextafter(s, HUGE_VAL) : s) : (e < 0 ? std::nextafter(s, -HUGE_VAL) : s);
+  }
+  static double productBound(double a, double b, bool up) {
+    const double p = a * b, e = std::fma(a, b, -p);
+    return up ? (e > 0 ? std::nextafter(p, HUGE_VAL) : p) : (e < 0 ? std::nextafter(p, -HUGE_VAL) : p);
+  }
+  static Range productRange(const Range& a, const Range& b) {
+    const double x[2] = {a.lo, a.hi}, y[2] = {b.lo, b.hi};
+    Range r{HUGE_VAL, -HUGE_VAL};
+    for (double u : x)
+      for (double w : y) r.lo = std::min(r.lo, productBound(u, w, false)), r.hi = std::max(r.hi, productBound(u, w, true));
+    return r;
+  }
+  void noteRange(const V& r, InstId inst, const V& a, const V& b) {
+    const Range *ra = rangeOf(a), *rb = rangeOf(b);
+    if (!ra || !rb) return;
+    if (inst == x86::Inst::kIdVaddps) {
+      setRange(r, sumBound(ra->lo, rb->lo, false), sumBound(ra->hi, rb->hi, true));
+    } else if (inst == x86::Inst::kIdVsubps) {
+      setRange(r, sumBound(ra->lo, -rb->hi, false), sumBound(ra->hi, -rb->lo, true));
+    } else if (inst == x86::Inst::kIdVmulps) {
+      const Range p = productRange(*ra, *rb);
+      setRange(r, p.lo, p.hi);
+    }
+  }
+  // Whether clamping v to [lo, hi] (vmaxps then vminps) gives v itself in every lane:
+  // v has no NaN and lies within the bounds, and no bound is a zero a signed zero of
+  // v could meet (vmaxps(-0, +0) gives +0).
+  bool clampKeeps(const V& v, float lo, float hi) const {
+    const Range* r = rangeOf(v);
+    if (!r || r->lo < double(lo) || r->hi > double(hi)) return false;
+    return !(lo == 0.0f && r->lo <= 0.0) && !(hi == 0.0f && r->hi >= 0.0);
   }
   V add(const V& a, const V& b) { return op2(x86::Inst::kIdVaddps, a, b); }
   V sub(const V& a, const V& b) { return op2(x86::Inst::kIdVsubps, a, b); }
@@ -573,6 +631,11 @@ class Generator {
       for (int h = 0; h < parts_; ++h) {
         cc_.emit(x86::Inst::kIdVmovaps, r.p[h], a.p[h]);
         cc_.emit(x86::Inst::kIdVfmadd213ps, r.p[h], b.p[h], c.p[h]);
+      }
+      const Range *ra = rangeOf(a), *rb = rangeOf(b), *rc = rangeOf(c);
+      if (ra && rb && rc) {
+        const Range p = productRange(*ra, *rb);
+        setRange(r, sumBound(p.lo, rc->lo, false), sumBound(p.hi, rc->hi, true));
       }
       return r;
     });
@@ -737,7 +800,13 @@ class Generator {
       if (!(in.dst.mask >> c & 1)) continue;
       V v = r[c];
       if (in.shift != 0) v = mul(v, splat(std::ldexp(1.0f, in.shift)));
-      if (clamp) v = min(max(v, splat(in.saturate ? 0.0f : in.clampLo)), splat(in.saturate ? 1.0f : in.clampHi));
+      if (clamp) {
+        const float lo = in.saturate ? 0.0f : in.clampLo, hi = in.saturate ? 1.0f : in.clampHi;
+        if (!clampKeeps(v, lo, hi)) {
+          v = min(max(v, splat(lo)), splat(hi));
+          setRange(v, lo, hi);  // NaN becomes lo
+        }
+      }
       // Fixed point of `quantize` fractional bits: nearbyint(v * 2^q) * 2^-q.
       if (in.quantize)
         v = mul(round(mul(v, splat(std::ldexp(1.0f, in.quantize))), 4), splat(std::ldexp(1.0f, -in.quantize)));
@@ -995,6 +1064,7 @@ class Generator {
   bool gathered_[3] = {};  // … and those gathered natively (gatheredConstant)
   std::map<Key, V> values_;                   // see memo()
   std::map<std::array<int, 3>, V> registers_;  // (file, index, component) → value held
+  std::map<uint32_t, Range> ranges_;           // by value id: see Range
   size_t current_ = 0;                  // the instruction being emitted
   std::vector<uint8_t> overwritten_;    // see findOverwrittenStores()
   x86::Gp frame_, temps_, inputs_, outputs_, constants_, immediates_;
