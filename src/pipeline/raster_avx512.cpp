@@ -1,17 +1,11 @@
-// The AVX-512 variant of the input interpolation of raster.cpp: the 16 lanes of a
-// batch in one register instead of two halves of eight, the same IEEE operations in
-// the same order (no contraction: -ffp-contract=off), so the values are identical.
-// Compiled with AVX-512 flags (CMakeLists.txt: sources named *_avx512.cpp) and called
-// only where the CPU has them (chooseInterpolateInputs); it uses no function shared
-// with other translation units, so none of them can end up with an AVX-512 copy.
-// GCC 12's AVX-512 intrinsics warn about their own undefined pass-through operands.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#if !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#include <immintrin.h>
-#pragma GCC diagnostic pop
+// The AVX-512 variants of raster.cpp's input interpolation and opaque block store: the
+// 16 lanes of a batch in one register instead of two halves of eight, the same IEEE
+// operations in the same order (no contraction: -ffp-contract=off), so the values are
+// identical. Compiled with AVX-512 flags (CMakeLists.txt: sources named *_avx512.cpp)
+// and called only where the CPU has them (chooseInterpolateInputs, rasterize); they use
+// no function shared with other translation units, so none of them can end up with an
+// AVX-512 copy.
+#include "refx/core/avx512_intrinsics.h"
 
 #include <cstring>
 

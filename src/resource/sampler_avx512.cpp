@@ -4,14 +4,7 @@
 // AVX-512 flags (CMakeLists.txt: sources named *_avx512.cpp) and called only where the
 // CPU has them (selectKernel2D). Everything but the selector has internal linkage, so
 // no other translation unit can end up calling an AVX-512 copy of a shared function.
-// GCC 12's AVX-512 intrinsics warn about their own undefined pass-through operands.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#if !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#include <immintrin.h>
-#pragma GCC diagnostic pop
+#include "refx/core/avx512_intrinsics.h"
 
 #include <cstdint>
 #include <cstring>

@@ -66,55 +66,41 @@ void checkVariant(InterpolateInputsFn fn, const Case& c, bool copyLast = false) 
   }
 }
 
-// invW = 1 in every lane (an affine primitive with w = 1): w = 1 and the values are the
-// planes' own (x * 1 = x), whichever way a variant gets there.
-TEST(RasterInterpolate, UnitWGivesThePlanesValues) {
-  std::mt19937 rng(9);
+// checkVariant on case c with the AVX2 variant, then with the AVX-512 one where the CPU
+// has it.
+void checkBothVariants(const Case& c, bool copyLast = false) {
   const CpuIsa saved = activeIsa();
-  for (int round = 0; round < 20; ++round) {
-    Case c = randomCase(rng, 1 + round % 7);
-    for (float& v : c.invW) v = 1.0f;
-    if (round % 2) c.invW[round % kBatchLanes] = 0.5f;  // one lane off: the general path
-    setActiveIsa(CpuIsa::Avx2);
-    checkVariant(chooseInterpolateInputs(), c);
-    if (detectedIsa() == CpuIsa::Avx512) {
-      setActiveIsa(CpuIsa::Avx512);
-      checkVariant(chooseInterpolateInputs(), c);
-    }
-  }
-  setActiveIsa(saved);
-}
-
-// A target marked sameAs another gets that one's values, not its own plane's.
-TEST(RasterInterpolate, CopiedInputsGetTheirSourcesValues) {
-  std::mt19937 rng(11);
-  const CpuIsa saved = activeIsa();
-  for (int round = 0; round < 20; ++round) {
-    const Case c = randomCase(rng, 2 + round % 6);
-    setActiveIsa(CpuIsa::Avx2);
-    checkVariant(chooseInterpolateInputs(), c, true);
-    if (detectedIsa() == CpuIsa::Avx512) {
-      setActiveIsa(CpuIsa::Avx512);
-      checkVariant(chooseInterpolateInputs(), c, true);
-    }
+  setActiveIsa(CpuIsa::Avx2);
+  checkVariant(chooseInterpolateInputs(), c, copyLast);
+  if (detectedIsa() == CpuIsa::Avx512) {
+    setActiveIsa(CpuIsa::Avx512);
+    ASSERT_EQ(chooseInterpolateInputs(), &interpolateInputsAvx512);
+    checkVariant(chooseInterpolateInputs(), c, copyLast);
   }
   setActiveIsa(saved);
 }
 
 TEST(RasterInterpolate, BothVariantsGiveTheFormulasValues) {
   std::mt19937 rng(7);
-  const CpuIsa saved = activeIsa();
-  for (int round = 0; round < 50; ++round) {
-    const Case c = randomCase(rng, 1 + round % 9);
-    setActiveIsa(CpuIsa::Avx2);
-    checkVariant(chooseInterpolateInputs(), c);
-    if (detectedIsa() == CpuIsa::Avx512) {
-      setActiveIsa(CpuIsa::Avx512);
-      ASSERT_EQ(chooseInterpolateInputs(), &interpolateInputsAvx512);
-      checkVariant(chooseInterpolateInputs(), c);
-    }
+  for (int round = 0; round < 50; ++round) checkBothVariants(randomCase(rng, 1 + round % 9));
+}
+
+// invW = 1 in every lane (an affine primitive with w = 1): w = 1 and the values are the
+// planes' own (x * 1 = x), whichever way a variant gets there.
+TEST(RasterInterpolate, UnitWGivesThePlanesValues) {
+  std::mt19937 rng(9);
+  for (int round = 0; round < 20; ++round) {
+    Case c = randomCase(rng, 1 + round % 7);
+    for (float& v : c.invW) v = 1.0f;
+    if (round % 2) c.invW[round % kBatchLanes] = 0.5f;  // one lane off: the general path
+    checkBothVariants(c);
   }
-  setActiveIsa(saved);
+}
+
+// A target marked sameAs another gets that one's values, not its own plane's.
+TEST(RasterInterpolate, CopiedInputsGetTheirSourcesValues) {
+  std::mt19937 rng(11);
+  for (int round = 0; round < 20; ++round) checkBothVariants(randomCase(rng, 2 + round % 6), true);
 }
 
 }  // namespace
