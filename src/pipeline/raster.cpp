@@ -46,6 +46,7 @@ struct GroupSlot {
   exec::BatchRegisters regs;  // prepared for RasterDraw::pixelRest
   std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations in regs
   alignas(64) float z[N];
+  alignas(64) float invW[N];
   alignas(64) float passU[N], passV[N];  // RasterDraw::passthroughSampler's coordinates
   alignas(64) uint32_t packed[N];
   InputTarget passTargets[2];
@@ -150,19 +151,20 @@ constexpr uint32_t kAnyState = 0xffffffffu, kNoDepth = 0;
 // yet to write (lazyFill: the batch tests against and writes over the fill's values).
 template <uint32_t F, bool Write>
 [[gnu::always_inline]] inline uint16_t enterBatch(const RasterDraw& d, const Primitive& p, int bx, int by,
-                                                  uint16_t mask, TileWorker& w, float* z, uint32_t& fillLeft) {
+                                                  uint16_t mask, TileWorker& w, float* z, float* invW,
+                                                  uint32_t& fillLeft) {
   constexpr bool any = F == kAnyState;
   const float* pl = d.planes.data() + p.planeOffset;
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
   fillLeft = w.lazyFill.parts && w.pending.take(bx, by) ? w.lazyFill.parts : 0;
   v8f fx[2], fy[2];
   laneOffsets(ox, oy, fx, fy);
-  evalPlane(pl, fx, fy, nullptr, w.invW);
+  evalPlane(pl, fx, fy, nullptr, invW);
   const v8f zero{}, one = zero + 1.0f;
   if (any ? d.depthTest || d.usesPosition : F != kNoDepth) {  // z is read by the depth test and vPos only
     if (d.wBuffer) {  // w / w_far plus the primitive's depth bias
       for (int h = 0; h < 2; ++h)
-        store8(z + 8 * h, bcast(d.invFarW) / load8(w.invW + 8 * h) + bcast(p.wDepthOffset));
+        store8(z + 8 * h, bcast(d.invFarW) / load8(invW + 8 * h) + bcast(p.wDepthOffset));
     } else {
       evalPlane(pl + 3, fx, fy, nullptr, z);
     }
@@ -235,7 +237,7 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
   const float* pl = d.planes.data() + p.planeOffset;
   const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
   uint32_t fillLeft;
-  mask = enterBatch<F, Write>(d, p, bx, by, mask, w, w.z, fillLeft);
+  mask = enterBatch<F, Write>(d, p, bx, by, mask, w, w.z, w.invW, fillLeft);
   if (!mask) return;
   // The program's output 0 as floats, or (passthrough) as the D3DCOLORs to store.
   alignas(64) uint32_t packed[N];
@@ -308,17 +310,22 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
     const int bx = blocks[i].bx, by = blocks[i].by;
     GroupSlot& slot = w.group[size_t(n)];
     uint32_t fillLeft;
-    const uint16_t mask = enterBatch<F, Write>(d, p, bx, by, uint16_t(blocks[i].mask), w, slot.z, fillLeft);
+    const uint16_t mask =
+        enterBatch<F, Write>(d, p, bx, by, uint16_t(blocks[i].mask), w, slot.z, slot.invW, fillLeft);
     if (!mask) continue;
-    const float* pl = d.planes.data() + p.planeOffset;
-    const float ox = float(bx) - p.originX, oy = float(by) - p.originY;
-    if (passthrough)
-      w.interpolateInputs(pl + 6 + 3 * d.passthroughInput, slot.passTargets, 2, ox, oy, w.invW, w.w);
-    else
-      w.interpolateInputs(pl + 6, slot.inputTargets.data(), slot.inputTargets.size(), ox, oy, w.invW, w.w);
     items[n++] = {bx, by, mask, fillLeft};
   }
   if (!n) return;
+  // The blocks' interpolation after all their depth tests, side by side.
+  const float* pl = d.planes.data() + p.planeOffset;
+  for (int g = 0; g < n; ++g) {
+    GroupSlot& slot = w.group[size_t(g)];
+    const float ox = float(items[g].bx) - p.originX, oy = float(items[g].by) - p.originY;
+    if (passthrough)
+      w.interpolateInputs(pl + 6 + 3 * d.passthroughInput, slot.passTargets, 2, ox, oy, slot.invW, w.w);
+    else
+      w.interpolateInputs(pl + 6, slot.inputTargets.data(), slot.inputTargets.size(), ox, oy, slot.invW, w.w);
+  }
   uint16_t lanes[kMaxSampleGroup];
   uint32_t packedDone = 0;
   if (passthrough) {
