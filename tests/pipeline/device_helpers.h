@@ -70,6 +70,28 @@ inline uint32_t pixel(const Device& dev, int x, int y) {
   return v;
 }
 
+// Filters and addressing (U and V alike) of sampler `stage`.
+inline void setSampler(Device& dev, uint32_t stage, uint32_t minFilter, uint32_t magFilter, uint32_t mipFilter,
+                       uint32_t address) {
+  dev.setSamplerState(stage, d3d::SAMP_MINFILTER, minFilter);
+  dev.setSamplerState(stage, d3d::SAMP_MAGFILTER, magFilter);
+  dev.setSamplerState(stage, d3d::SAMP_MIPFILTER, mipFilter);
+  dev.setSamplerState(stage, d3d::SAMP_ADDRESSU, address);
+  dev.setSamplerState(stage, d3d::SAMP_ADDRESSV, address);
+}
+
+// A frame's colour bytes (rows of the target's level 0) and depths, compared whole.
+struct FrameContents {
+  std::vector<uint8_t> color;
+  std::vector<float> depth;
+};
+inline FrameContents readFrame(const Texture& target, const DepthStencilSurface& ds) {
+  FrameContents f;
+  f.color.assign(target.data(0, 0), target.data(0, 0) + size_t(target.rowPitch(0)) * size_t(target.height(0)));
+  f.depth = ds.depth;
+  return f;
+}
+
 inline void drawTL(Device& dev, d3d::PrimitiveType type, const std::vector<TLVertex>& v) {
   dev.setFVF(kTLVertexFVF);
   uint32_t prims = type == d3d::PT_TRIANGLELIST ? uint32_t(v.size() / 3)

@@ -51,9 +51,7 @@ struct Config {
   bool depth, blend, sameSize;
 };
 
-struct Frame {
-  std::vector<uint8_t> color;
-  std::vector<float> depth;
+struct Frame : FrameContents {
   uint64_t groupedDraws;
 };
 
@@ -78,13 +76,7 @@ Frame render(const Config& c, const char* ps) {
   dev.setRenderState(RS_DESTBLEND, BLEND_INVSRCALPHA);
   dev.setTexture(0, noiseTexture(64, 32, 12345));
   dev.setTexture(1, c.sameSize ? noiseTexture(64, 32, 777) : noiseTexture(32, 64, 777));
-  for (uint32_t s : {0u, 1u}) {
-    dev.setSamplerState(s, SAMP_MINFILTER, c.filter);
-    dev.setSamplerState(s, SAMP_MAGFILTER, c.filter);
-    dev.setSamplerState(s, SAMP_MIPFILTER, c.mipFilter);
-    dev.setSamplerState(s, SAMP_ADDRESSU, c.address);
-    dev.setSamplerState(s, SAMP_ADDRESSV, c.address);
-  }
+  for (uint32_t s : {0u, 1u}) setSampler(dev, s, c.filter, c.filter, c.mipFilter, c.address);
   const float k[4] = {0.75f, 0.5f, 0.25f, 0.625f};
   dev.setPixelShaderConstantF(1, k, 1);
   dev.setPixelShader(dev.createPixelShader(shader::assembleTokens(ps, "test.psh")));
@@ -103,8 +95,7 @@ Frame render(const Config& c, const char* ps) {
           {130.0f, 80.0f, 0.35f, 0.4f, 0xffa0b0c0, 1.0f, 1.0f},
           {61.0f, 80.0f, 0.45f, 0.7f, 0xffa0b0c0, 0.0f, 1.0f}});
   Frame f;
-  f.color.assign(target->data(0, 0), target->data(0, 0) + size_t(target->rowPitch(0)) * h);
-  f.depth = ds->depth;
+  static_cast<FrameContents&>(f) = readFrame(*target, *ds);
   f.groupedDraws = dev.stats().groupedLookupDraws;
   return f;
 }

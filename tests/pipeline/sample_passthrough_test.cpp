@@ -31,9 +31,7 @@ struct Config {
   bool depth;
 };
 
-struct Frame {
-  std::vector<uint8_t> color;
-  std::vector<float> depth;
+struct Frame : FrameContents {
   uint64_t passthroughDraws;
 };
 
@@ -53,11 +51,7 @@ Frame render(const Config& c, const char* ps, const TexturePtr& tex) {
   dev.setRenderState(RS_ZFUNC, CMP_LESS);
   dev.setRenderState(RS_CULLMODE, CULL_NONE);
   dev.setTexture(0, tex);
-  dev.setSamplerState(0, SAMP_MINFILTER, c.minFilter);
-  dev.setSamplerState(0, SAMP_MAGFILTER, c.magFilter);
-  dev.setSamplerState(0, SAMP_MIPFILTER, c.mipFilter);
-  dev.setSamplerState(0, SAMP_ADDRESSU, c.address);
-  dev.setSamplerState(0, SAMP_ADDRESSV, c.address);
+  setSampler(dev, 0, c.minFilter, c.magFilter, c.mipFilter, c.address);
   dev.setPixelShader(dev.createPixelShader(shader::assembleTokens(ps, "test.psh")));
   dev.resetStats();
   drawTL(dev, PT_TRIANGLELIST,
@@ -68,8 +62,7 @@ Frame render(const Config& c, const char* ps, const TexturePtr& tex) {
           {10.0f, 3.0f, 0.6f, 0.5f, 0xffffffff, -0.2f, 0.9f},
           {66.0f, 20.0f, 0.6f, 0.8f, 0xffffffff, 0.3f, -0.8f}});
   Frame f;
-  f.color.assign(target->data(0, 0), target->data(0, 0) + size_t(target->rowPitch(0)) * h);
-  f.depth = ds->depth;
+  static_cast<FrameContents&>(f) = readFrame(*target, *ds);
   f.passthroughDraws = dev.stats().samplePassthroughDraws;
   return f;
 }
