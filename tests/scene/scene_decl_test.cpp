@@ -57,8 +57,11 @@ TEST(SceneDecl, FvfReplacesTheDeclaration) {
       "v 0 0 0\n"
       "draw pointlist\n",
       "s.scene");
-  for (const Command& c : s.commands)
-    if (const auto* d = std::get_if<Draw>(&c.action)) EXPECT_FALSE(d->declaration.has_value());
+  for (const Command& c : s.commands) {
+    if (const auto* d = std::get_if<Draw>(&c.action)) {
+      EXPECT_FALSE(d->declaration.has_value());
+    }
+  }
 }
 
 TEST(SceneDecl, ErrorsNameTheElement) {
