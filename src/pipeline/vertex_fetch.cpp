@@ -146,6 +146,16 @@ void fetchVertices(const std::vector<FetchElement>& elements, const StreamView* 
     if (r < 0 || r >= int(regs.inputs.size()) || e.stream >= 16) continue;
     const StreamView& s = streams[e.stream];
     const uint32_t esize = elementSize(e.type);
+    if (e.type >= DECLTYPE_FLOAT1 && e.type <= DECLTYPE_FLOAT4 && count > 0 && s.data &&
+        (size_t(first) + size_t(count) - 1) * s.stride + e.offset + esize <= s.size) {
+      // Floats with the whole batch inside the stream: copied as they are (decodeElement's
+      // FLOATn), one bounds check for the batch.
+      const int n = e.type - DECLTYPE_FLOAT1 + 1;
+      const uint8_t* p = s.data + size_t(first) * s.stride + e.offset;
+      for (int l = 0; l < count; ++l, p += s.stride)
+        for (int c = 0; c < n; ++c) std::memcpy(&regs.inputs[r].c[c][l], p + 4 * c, 4);
+      continue;
+    }
     for (int l = 0; l < count; ++l) {
       size_t off = size_t(first + l) * s.stride + e.offset;
       float v[4];

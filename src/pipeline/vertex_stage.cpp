@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cstring>
 
+#include <immintrin.h>
+
 #include "draw_plan.h"
 #include "refx/pipeline/shader_object.h"
 
@@ -94,6 +96,7 @@ uint32_t runVertexStage(const DrawPlan& plan, const DeviceState& st, ThreadPool&
     const exec::ProgramBuildInfo info = exec::prepare(vprog, vctx, vregs[i], options);
     if (i == 0) build = info;
   }
+  static_assert(sizeof(Vec4) == 4 * sizeof(float), "Vec4 is x, y, z, w and nothing else");
   pool.parallelFor(batches, [&](size_t b, int thread) {
     exec::BatchRegisters& r = vregs[thread];
     const uint32_t first = lo + uint32_t(b) * kBatchLanes;
@@ -103,10 +106,20 @@ uint32_t runVertexStage(const DrawPlan& plan, const DeviceState& st, ThreadPool&
     for (auto& o : r.outputs) std::memset(&o, 0, sizeof(o));
     r.laneMask = 0xffff;
     exec::execute(vprog, vctx, r);
+    ShadedVertex* out = verts.data() + (first - lo);
+    // The outputs from SoA to the vertices' Vec4s, four lanes at a time (a 4x4 transpose).
+    for (int o = 0; o < kVaryingCount; ++o) {
+      const float (*c)[kBatchLanes] = r.outputs[o].c;
+      for (int l0 = 0; l0 < n; l0 += 4) {
+        __m128 x = _mm_loadu_ps(c[0] + l0), y = _mm_loadu_ps(c[1] + l0);
+        __m128 z = _mm_loadu_ps(c[2] + l0), w = _mm_loadu_ps(c[3] + l0);
+        _MM_TRANSPOSE4_PS(x, y, z, w);
+        const __m128 lanes[4] = {x, y, z, w};
+        for (int k = 0; k < 4 && l0 + k < n; ++k) _mm_storeu_ps(&out[l0 + k].out[o].x, lanes[k]);
+      }
+    }
     for (int l = 0; l < n; ++l) {
-      ShadedVertex& sv = verts[first - lo + l];
-      for (int o = 0; o < kVaryingCount; ++o)
-        for (int c = 0; c < 4; ++c) sv.out[o][c] = r.outputs[o].c[c][l];
+      ShadedVertex& sv = out[l];
       if (plan.clampColors)
         for (int o : {int(kVertexOutDiffuse), int(kVertexOutSpecular)})
           for (int c = 0; c < 4; ++c) sv.out[o][c] = std::clamp(sv.out[o][c], 0.0f, 1.0f);
