@@ -418,7 +418,7 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.pixelRestBuild = &pixelRestBuild;
   std::atomic<uint32_t> pixelBoundStops{0};
   d.execContext.boundStops = &pixelBoundStops;
-  setupPrimitives(*plan, st, caps_.maxPointSize, type, primitiveCount, vertices, impl_->vertices, d);
+  setupPrimitives(*plan, st, caps_.maxPointSize, type, primitiveCount, vertices, impl_->vertices, d, impl_->pool);
   stats_.primitives += primitiveCount;
   d.fill = impl_->pendingClear;
   impl_->pendingClear = {};

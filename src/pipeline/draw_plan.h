@@ -158,10 +158,11 @@ void bindOutputMerger(const DrawPlan& plan, const DeviceState& st, const DrawSur
                       RasterDraw& d);
 
 // Primitive assembly, clipping, culling, viewport and triangle/line/point setup of the
-// shaded vertices into d.prims / d.planes.
+// shaded vertices into d.prims / d.planes, in primitive order; a large draw's ranges of
+// primitives on the pool's threads.
 void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPointSize,
                      d3d::PrimitiveType type, uint32_t primitiveCount, const DrawIndices& indices,
-                     const std::vector<ShadedVertex>& verts, RasterDraw& d);
+                     const std::vector<ShadedVertex>& verts, RasterDraw& d, ThreadPool& pool);
 
 // The rectangle Clear and draws may touch: viewport ∩ target (∩ scissor when enabled).
 Rect activeRect(const DeviceState& s, int w, int h);

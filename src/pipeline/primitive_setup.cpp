@@ -37,6 +37,13 @@ struct SetupVertex {
   float wDepthOffset = 0;  // w-buffering: the depth bias of the triangle a line or point outlines
 };
 
+// Where setup appends primitives and their planes (RasterDraw::prims / planes, or a
+// range of the draw's primitives set up by another thread).
+struct PrimitiveList {
+  std::vector<Primitive>& prims;
+  std::vector<float>& planes;
+};
+
 void addPlane(std::vector<float>& planes, double a0, double a1, double a2, double x1, double y1,
               double x2, double y2, double det) {
   // Plane through (0,0,a0), (x1,y1,a1), (x2,y2,a2) relative to vertex 0.
@@ -71,8 +78,8 @@ double bufferDepth(const RasterDraw& d, const SetupVertex& v) {
 }
 
 // `biased`: D3DRS_DEPTHBIAS/SLOPESCALEDEPTHBIAS apply (not to the pieces of a point).
-void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, const Rect& bounds,
-                   bool flat, bool biased = true) {
+void setupTriangle(const RasterDraw& d, PrimitiveList out, const SetupVertex (&sv)[3], uint32_t cull,
+                   const Rect& bounds, bool flat, bool biased = true) {
   constexpr double one = double(1 << kSubPixelBits);
   // Positions that are not numbers or lie far beyond any guard band (pretransformed
   // vertices are not clipped) would overflow the fixed-point edge functions: such a
@@ -104,11 +111,11 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
   const double det = x1 * y2 - x2 * y1;
   p.originX = float(x0);
   p.originY = float(y0);
-  p.planeOffset = uint32_t(d.planes.size());
-  addPlane(d.planes, sv[0].invW, sv[1].invW, sv[2].invW, x1, y1, x2, y2, det);
-  addPlane(d.planes, sv[0].z, sv[1].z, sv[2].z, x1, y1, x2, y2, det);
+  p.planeOffset = uint32_t(out.planes.size());
+  addPlane(out.planes, sv[0].invW, sv[1].invW, sv[2].invW, x1, y1, x2, y2, det);
+  addPlane(out.planes, sv[0].z, sv[1].z, sv[2].z, x1, y1, x2, y2, det);
   if (biased && (d.depthBias != 0 || d.slopeScaleDepthBias != 0)) {
-    float* z = &d.planes[d.planes.size() - 3];  // base, dz/dx, dz/dy
+    float* z = &out.planes[out.planes.size() - 3];  // base, dz/dx, dz/dy
     float slopeX = z[1], slopeY = z[2];
     if (d.wBuffer) {
       // The slopes of the stored w / w_far across the vertices.
@@ -122,9 +129,9 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
   }
   for (const InterpolatedInput& in : d.inputs) {
     if (in.flat) {
-      d.planes.push_back(sv[0].varyings[in.varying][in.component]);
-      d.planes.push_back(0);
-      d.planes.push_back(0);
+      out.planes.push_back(sv[0].varyings[in.varying][in.component]);
+      out.planes.push_back(0);
+      out.planes.push_back(0);
       continue;
     }
     double a[3];
@@ -134,12 +141,13 @@ void setupTriangle(RasterDraw& d, const SetupVertex (&sv)[3], uint32_t cull, con
       wrapTowards(a[0], a[2]);
     }
     for (int i = 0; i < 3; ++i) a[i] *= sv[i].invW;
-    addPlane(d.planes, a[0], a[1], a[2], x1, y1, x2, y2, det);
+    addPlane(out.planes, a[0], a[1], a[2], x1, y1, x2, y2, det);
   }
-  d.prims.push_back(p);
+  out.prims.push_back(p);
 }
 
-void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const Rect& bounds, bool flat) {
+void setupLine(const RasterDraw& d, PrimitiveList out, const SetupVertex& a, const SetupVertex& b, const Rect& bounds,
+               bool flat) {
   const float dx = b.x - a.x, dy = b.y - a.y;
   if (dx == 0 && dy == 0) return;
   Primitive p{};
@@ -158,14 +166,14 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
   if (p.minX > p.maxX || p.minY > p.maxY) return;
   p.originX = a.x;
   p.originY = a.y;
-  p.planeOffset = uint32_t(d.planes.size());
+  p.planeOffset = uint32_t(out.planes.size());
   p.wDepthOffset = a.wDepthOffset;
   const float len = bmaj - amaj;
   auto plane = [&](double va, double vb) {
-    d.planes.push_back(float(va));
+    out.planes.push_back(float(va));
     const float g = float((vb - va) / len);
-    d.planes.push_back(p.xMajor ? g : 0.0f);
-    d.planes.push_back(p.xMajor ? 0.0f : g);
+    out.planes.push_back(p.xMajor ? g : 0.0f);
+    out.planes.push_back(p.xMajor ? 0.0f : g);
   };
   plane(a.invW, b.invW);
   plane(a.z, b.z);
@@ -178,7 +186,7 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
     if (in.wrap) wrapTowards(va, vb);
     plane(va * a.invW, vb * b.invW);
   }
-  d.prims.push_back(p);
+  out.prims.push_back(p);
 }
 
 // A point is a screen-aligned square of side `size` centred on the vertex; it covers
@@ -187,7 +195,8 @@ void setupLine(RasterDraw& d, const SetupVertex& a, const SetupVertex& b, const 
 // (D3DRS_POINTSPRITEENABLE) texture coordinates u, v of every set run across the
 // square, (0,0) at its top-left corner to (1,1) at its bottom-right; otherwise all
 // inputs keep the vertex's values.
-void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bounds, bool sprite) {
+void setupPoint(const RasterDraw& d, PrimitiveList out, const SetupVertex& a, float size, const Rect& bounds,
+                bool sprite) {
   if (!std::isfinite(a.x) || !std::isfinite(a.y)) return;
   Primitive p{};
   p.kind = PrimKind::Point;
@@ -202,12 +211,12 @@ void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bou
   if (p.minX > p.maxX || p.minY > p.maxY) return;
   p.originX = a.x;
   p.originY = a.y;
-  p.planeOffset = uint32_t(d.planes.size());
+  p.planeOffset = uint32_t(out.planes.size());
   p.wDepthOffset = a.wDepthOffset;
   auto plane = [&](float v, float dx, float dy) {
-    d.planes.push_back(v);
-    d.planes.push_back(dx);
-    d.planes.push_back(dy);
+    out.planes.push_back(v);
+    out.planes.push_back(dx);
+    out.planes.push_back(dy);
   };
   plane(a.invW, 0, 0);
   plane(a.z, 0, 0);
@@ -222,7 +231,7 @@ void setupPoint(RasterDraw& d, const SetupVertex& a, float size, const Rect& bou
     }
     plane(a.varyings[in.varying][in.component] * scale, 0, 0);
   }
-  d.prims.push_back(p);
+  out.prims.push_back(p);
 }
 
 
@@ -268,9 +277,12 @@ void findInputCopies(RasterDraw& d, const std::vector<ShadedVertex>& verts, bool
 
 }  // namespace
 
+// Draws with fewer primitives are set up by one thread.
+constexpr uint32_t kParallelSetupPrimitives = 512;
+
 void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPointSize,
                      PrimitiveType type, uint32_t primitiveCount, const DrawIndices& indices,
-                     const std::vector<ShadedVertex>& verts, RasterDraw& d) {
+                     const std::vector<ShadedVertex>& verts, RasterDraw& d, ThreadPool& pool) {
   const std::vector<uint32_t>& idx = indices.idx;
   const uint32_t lo = indices.lo;
   const FixedFunctionVertexConfig& vcfg = plan.vertexConfig;
@@ -331,133 +343,159 @@ void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPoint
     needsClip[i] = !vcfg.pretransformed && clip.outside(verts[i].out[0]);
   }
 
-  std::vector<ClipVertex> poly;
-  auto triangle = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
-    auto emitScreen = [&](SetupVertex (&sv)[3]) {
-      const Vec4* a = sv[0].varyings;
-      const Vec4* b = sv[1].varyings;
-      const Vec4* c = sv[2].varyings;
-      if (fill == FILL_SOLID) {
-        setupTriangle(d, sv, cull, bounds, flat);
-        return;
-      }
-      // Wireframe/point fill: cull first, then draw edges or vertices.
-      const double area = double(sv[1].x - sv[0].x) * (sv[2].y - sv[0].y) -
-                          double(sv[2].x - sv[0].x) * (sv[1].y - sv[0].y);
-      if (area == 0 || (cull == CULL_CCW && area < 0) || (cull == CULL_CW && area > 0)) return;
-      if (d.depthBias != 0 || d.slopeScaleDepthBias != 0) {
-        // The triangle's depth offset applies to its edges and vertices as well.
-        const double x1 = sv[1].x - sv[0].x, y1 = sv[1].y - sv[0].y;
-        const double x2 = sv[2].x - sv[0].x, y2 = sv[2].y - sv[0].y;
-        const double z0 = bufferDepth(d, sv[0]);
-        const double z1 = bufferDepth(d, sv[1]) - z0, z2 = bufferDepth(d, sv[2]) - z0;
-        const float offset = depthOffset(d.depthBias, d.slopeScaleDepthBias,
-                                         float((z1 * y2 - z2 * y1) / area), float((z2 * x1 - z1 * x2) / area));
-        for (SetupVertex& v : sv) (d.wBuffer ? v.wDepthOffset : v.z) += offset;
-      }
-      if (fill == FILL_WIREFRAME) {
-        setupLine(d, sv[0], sv[1], bounds, flat);
-        setupLine(d, sv[1], sv[2], bounds, flat);
-        setupLine(d, sv[2], sv[0], bounds, flat);
-      } else {
-        const Vec4* outs[3] = {a, b, c};
-        for (int k = 0; k < 3; ++k) setupPoint(d, sv[k], pointSizeOf(outs[k]), bounds, pointSprite);
-      }
-    };
-    auto emit = [&](const Vec4* a, const Vec4* b, const Vec4* c) {
-      SetupVertex sv[3];
-      toScreen(a, sv[0]);
-      toScreen(b, sv[1]);
-      toScreen(c, sv[2]);
-      emitScreen(sv);
-    };
-    const uint32_t v0 = i0 - lo, v1 = i1 - lo, v2 = i2 - lo;
-    if (!needsClip[v0] && !needsClip[v1] && !needsClip[v2]) {
-      SetupVertex sv[3] = {screen[v0], screen[v1], screen[v2]};
-      emitScreen(sv);
-      return;
-    }
-    const Vec4* o[3] = {vertexOut(i0), vertexOut(i1), vertexOut(i2)};
-    poly.assign(3, {});
-    for (int k = 0; k < 3; ++k) std::memcpy(poly[k].v, o[k], sizeof(poly[k].v));
-    clipPolygon(poly, clip);
-    for (size_t k = 2; k < poly.size(); ++k) {
-      // Clipped vertices keep the provoking (first) vertex's flat colors.
-      emit(poly[0].v, poly[k - 1].v, poly[k].v);
-    }
-  };
-  auto line = [&](uint32_t i0, uint32_t i1) {
-    const Vec4* a = vertexOut(i0);
-    const Vec4* b = vertexOut(i1);
-    SetupVertex sa, sb;
-    ClipVertex ca, cb;  // outlive the setup: SetupVertex points at their varyings
-    if (!vcfg.pretransformed && (clip.outside(a[0]) || clip.outside(b[0]))) {
-      if (!clipSegment(a, b, clip, ca, cb)) return;
-      toScreen(ca.v, sa);
-      toScreen(cb.v, sb);
-    } else {
-      toScreen(a, sa);
-      toScreen(b, sb);
-    }
-    setupLine(d, sa, sb, bounds, flat);
-  };
-  auto point = [&](uint32_t i) {
-    const Vec4* a = vertexOut(i);
-    // A point whose centre is outside the view volume is culled whole.
-    if (!vcfg.pretransformed && clip.outsideVolume(a[0])) return;
-    const float size = pointSizeOf(a);
-    if (!vcfg.pretransformed && clip.userCount) {
-      // User planes clip the point's square like a polygon
-      // (D3DPMISCCAPS_CLIPPLANESCALEDPOINTS): the corners, then two triangles per
-      // clipped piece, with the same coverage rule and constant (or sprite) values.
-      const float side = std::max(size, 1.0f) * a[0].w;  // half side * 2w
-      ClipVertex corners[4];
-      pointCorners(a, side / float(vp.width), side / float(vp.height), pointSprite, corners);
-      bool inside = true;
-      for (const ClipVertex& c : corners) inside &= clip.insideUser(c.v[0]);
-      if (!inside) {
-        poly.assign(corners, corners + 4);
-        clipPolygon(poly, clip);
-        for (size_t k = 2; k < poly.size(); ++k) {
-          SetupVertex sv[3];
-          toScreen(poly[0].v, sv[0]);
-          toScreen(poly[k - 1].v, sv[1]);
-          toScreen(poly[k].v, sv[2]);
-          setupTriangle(d, sv, CULL_NONE, bounds, flat, false);
+  // The primitives [begin, end) into `out`, with `poly` to clip in.
+  auto setupRange = [&](uint32_t begin, uint32_t end, PrimitiveList out, std::vector<ClipVertex>& poly) {
+    auto triangle = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
+      auto emitScreen = [&](SetupVertex (&sv)[3]) {
+        const Vec4* a = sv[0].varyings;
+        const Vec4* b = sv[1].varyings;
+        const Vec4* c = sv[2].varyings;
+        if (fill == FILL_SOLID) {
+          setupTriangle(d, out, sv, cull, bounds, flat);
+          return;
         }
+        // Wireframe/point fill: cull first, then draw edges or vertices.
+        const double area = double(sv[1].x - sv[0].x) * (sv[2].y - sv[0].y) -
+                            double(sv[2].x - sv[0].x) * (sv[1].y - sv[0].y);
+        if (area == 0 || (cull == CULL_CCW && area < 0) || (cull == CULL_CW && area > 0)) return;
+        if (d.depthBias != 0 || d.slopeScaleDepthBias != 0) {
+          // The triangle's depth offset applies to its edges and vertices as well.
+          const double x1 = sv[1].x - sv[0].x, y1 = sv[1].y - sv[0].y;
+          const double x2 = sv[2].x - sv[0].x, y2 = sv[2].y - sv[0].y;
+          const double z0 = bufferDepth(d, sv[0]);
+          const double z1 = bufferDepth(d, sv[1]) - z0, z2 = bufferDepth(d, sv[2]) - z0;
+          const float offset = depthOffset(d.depthBias, d.slopeScaleDepthBias,
+                                           float((z1 * y2 - z2 * y1) / area), float((z2 * x1 - z1 * x2) / area));
+          for (SetupVertex& v : sv) (d.wBuffer ? v.wDepthOffset : v.z) += offset;
+        }
+        if (fill == FILL_WIREFRAME) {
+          setupLine(d, out, sv[0], sv[1], bounds, flat);
+          setupLine(d, out, sv[1], sv[2], bounds, flat);
+          setupLine(d, out, sv[2], sv[0], bounds, flat);
+        } else {
+          const Vec4* outs[3] = {a, b, c};
+          for (int k = 0; k < 3; ++k) setupPoint(d, out, sv[k], pointSizeOf(outs[k]), bounds, pointSprite);
+        }
+      };
+      auto emit = [&](const Vec4* a, const Vec4* b, const Vec4* c) {
+        SetupVertex sv[3];
+        toScreen(a, sv[0]);
+        toScreen(b, sv[1]);
+        toScreen(c, sv[2]);
+        emitScreen(sv);
+      };
+      const uint32_t v0 = i0 - lo, v1 = i1 - lo, v2 = i2 - lo;
+      if (!needsClip[v0] && !needsClip[v1] && !needsClip[v2]) {
+        SetupVertex sv[3] = {screen[v0], screen[v1], screen[v2]};
+        emitScreen(sv);
         return;
       }
-    }
-    SetupVertex s;
-    toScreen(a, s);
-    setupPoint(d, s, size, bounds, pointSprite);
-  };
-
-  switch (type) {
-    case PT_POINTLIST:
-      for (uint32_t i = 0; i < primitiveCount; ++i) point(idx[i]);
-      break;
-    case PT_LINELIST:
-      for (uint32_t i = 0; i < primitiveCount; ++i) line(idx[2 * i], idx[2 * i + 1]);
-      break;
-    case PT_LINESTRIP:
-      for (uint32_t i = 0; i < primitiveCount; ++i) line(idx[i], idx[i + 1]);
-      break;
-    case PT_TRIANGLELIST:
-      for (uint32_t i = 0; i < primitiveCount; ++i) triangle(idx[3 * i], idx[3 * i + 1], idx[3 * i + 2]);
-      break;
-    case PT_TRIANGLESTRIP:
-      // Odd triangles swap two vertices to keep the winding consistent.
-      for (uint32_t i = 0; i < primitiveCount; ++i) {
-        if (i & 1) triangle(idx[i + 1], idx[i], idx[i + 2]);
-        else triangle(idx[i], idx[i + 1], idx[i + 2]);
+      const Vec4* o[3] = {vertexOut(i0), vertexOut(i1), vertexOut(i2)};
+      poly.assign(3, {});
+      for (int k = 0; k < 3; ++k) std::memcpy(poly[k].v, o[k], sizeof(poly[k].v));
+      clipPolygon(poly, clip);
+      for (size_t k = 2; k < poly.size(); ++k) {
+        // Clipped vertices keep the provoking (first) vertex's flat colors.
+        emit(poly[0].v, poly[k - 1].v, poly[k].v);
       }
-      break;
-    case PT_TRIANGLEFAN:
-      // D3D's provoking vertex for flat shading in a fan is the second vertex of each
-      // triangle (v[i+1]); start the triangle there.
-      for (uint32_t i = 0; i < primitiveCount; ++i) triangle(idx[i + 1], idx[i + 2], idx[0]);
-      break;
+    };
+    auto line = [&](uint32_t i0, uint32_t i1) {
+      const Vec4* a = vertexOut(i0);
+      const Vec4* b = vertexOut(i1);
+      SetupVertex sa, sb;
+      ClipVertex ca, cb;  // outlive the setup: SetupVertex points at their varyings
+      if (!vcfg.pretransformed && (clip.outside(a[0]) || clip.outside(b[0]))) {
+        if (!clipSegment(a, b, clip, ca, cb)) return;
+        toScreen(ca.v, sa);
+        toScreen(cb.v, sb);
+      } else {
+        toScreen(a, sa);
+        toScreen(b, sb);
+      }
+      setupLine(d, out, sa, sb, bounds, flat);
+    };
+    auto point = [&](uint32_t i) {
+      const Vec4* a = vertexOut(i);
+      // A point whose centre is outside the view volume is culled whole.
+      if (!vcfg.pretransformed && clip.outsideVolume(a[0])) return;
+      const float size = pointSizeOf(a);
+      if (!vcfg.pretransformed && clip.userCount) {
+        // User planes clip the point's square like a polygon
+        // (D3DPMISCCAPS_CLIPPLANESCALEDPOINTS): the corners, then two triangles per
+        // clipped piece, with the same coverage rule and constant (or sprite) values.
+        const float side = std::max(size, 1.0f) * a[0].w;  // half side * 2w
+        ClipVertex corners[4];
+        pointCorners(a, side / float(vp.width), side / float(vp.height), pointSprite, corners);
+        bool inside = true;
+        for (const ClipVertex& c : corners) inside &= clip.insideUser(c.v[0]);
+        if (!inside) {
+          poly.assign(corners, corners + 4);
+          clipPolygon(poly, clip);
+          for (size_t k = 2; k < poly.size(); ++k) {
+            SetupVertex sv[3];
+            toScreen(poly[0].v, sv[0]);
+            toScreen(poly[k - 1].v, sv[1]);
+            toScreen(poly[k].v, sv[2]);
+            setupTriangle(d, out, sv, CULL_NONE, bounds, flat, false);
+          }
+          return;
+        }
+      }
+      SetupVertex s;
+      toScreen(a, s);
+      setupPoint(d, out, s, size, bounds, pointSprite);
+    };
+
+    switch (type) {
+      case PT_POINTLIST:
+        for (uint32_t i = begin; i < end; ++i) point(idx[i]);
+        break;
+      case PT_LINELIST:
+        for (uint32_t i = begin; i < end; ++i) line(idx[2 * i], idx[2 * i + 1]);
+        break;
+      case PT_LINESTRIP:
+        for (uint32_t i = begin; i < end; ++i) line(idx[i], idx[i + 1]);
+        break;
+      case PT_TRIANGLELIST:
+        for (uint32_t i = begin; i < end; ++i) triangle(idx[3 * i], idx[3 * i + 1], idx[3 * i + 2]);
+        break;
+      case PT_TRIANGLESTRIP:
+        // Odd triangles swap two vertices to keep the winding consistent.
+        for (uint32_t i = begin; i < end; ++i) {
+          if (i & 1) triangle(idx[i + 1], idx[i], idx[i + 2]);
+          else triangle(idx[i], idx[i + 1], idx[i + 2]);
+        }
+        break;
+      case PT_TRIANGLEFAN:
+        // D3D's provoking vertex for flat shading in a fan is the second vertex of each
+        // triangle (v[i+1]); start the triangle there.
+        for (uint32_t i = begin; i < end; ++i) triangle(idx[i + 1], idx[i + 2], idx[0]);
+        break;
+    }
+  };
+  const int threads = pool.threadCount();
+  if (threads < 2 || primitiveCount < kParallelSetupPrimitives) {
+    std::vector<ClipVertex> poly;
+    setupRange(0, primitiveCount, {d.prims, d.planes}, poly);
+    return;
+  }
+  // Consecutive ranges, one per thread: the first into the draw's lists, the others
+  // into their own, appended in order after (their plane offsets moved by the planes
+  // before them), so the draw's lists are those of one thread.
+  std::vector<std::vector<Primitive>> prims(size_t(threads - 1));
+  std::vector<std::vector<float>> planes(size_t(threads - 1));
+  pool.parallelFor(size_t(threads), [&](size_t c, int) {
+    const uint32_t begin = uint32_t(uint64_t(primitiveCount) * c / size_t(threads));
+    const uint32_t end = uint32_t(uint64_t(primitiveCount) * (c + 1) / size_t(threads));
+    std::vector<ClipVertex> poly;
+    if (c == 0) setupRange(begin, end, {d.prims, d.planes}, poly);
+    else setupRange(begin, end, {prims[c - 1], planes[c - 1]}, poly);
+  });
+  for (size_t c = 0; c + 1 < size_t(threads); ++c) {
+    const uint32_t offset = uint32_t(d.planes.size());
+    for (Primitive& p : prims[c]) p.planeOffset += offset;
+    d.prims.insert(d.prims.end(), prims[c].begin(), prims[c].end());
+    d.planes.insert(d.planes.end(), planes[c].begin(), planes[c].end());
   }
 }
 
