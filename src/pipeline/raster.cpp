@@ -19,22 +19,57 @@ namespace {
 
 constexpr int N = kBatchLanes;
 
+// The primitives of each tile, in draw order: tile t's are entries[start[t],
+// start[t + 1]) (a counting sort: no list per tile to allocate).
 struct TileBins {
   int tilesX = 0, tilesY = 0;
-  std::vector<std::vector<uint32_t>> lists;  // primitive indices per tile, in order
+  std::vector<uint32_t> start;    // tiles + 1
+  std::vector<uint32_t> entries;  // primitive indices
+  size_t tiles() const { return start.size() - 1; }
 };
 
-void bin(const RasterDraw& d, TileBins& bins) {
+// Draws with fewer primitives are binned by one thread.
+constexpr size_t kParallelBinPrimitives = 1024;
+
+// Calls fn(tile) for every tile that p's rectangle touches.
+template <class Fn>
+inline void forTilesOf(const Primitive& p, int tilesX, Fn fn) {
+  if (p.minX > p.maxX || p.minY > p.maxY) return;
+  for (int ty = p.minY / kTileSize; ty <= p.maxY / kTileSize; ++ty)
+    for (int tx = p.minX / kTileSize; tx <= p.maxX / kTileSize; ++tx) fn(size_t(ty) * size_t(tilesX) + size_t(tx));
+}
+
+// Consecutive ranges of the primitives on the pool's threads: each counts its entries
+// per tile, then writes them where the counts of the tiles before and of the ranges
+// before in the same tile end, so every tile's entries stay in draw order.
+void bin(const RasterDraw& d, TileBins& bins, ThreadPool& pool) {
   bins.tilesX = (d.width + kTileSize - 1) / kTileSize;
   bins.tilesY = (d.height + kTileSize - 1) / kTileSize;
-  bins.lists.assign(size_t(bins.tilesX) * bins.tilesY, {});
-  for (uint32_t i = 0; i < d.prims.size(); ++i) {
-    const Primitive& p = d.prims[i];
-    if (p.minX > p.maxX || p.minY > p.maxY) continue;
-    for (int ty = p.minY / kTileSize; ty <= p.maxY / kTileSize; ++ty)
-      for (int tx = p.minX / kTileSize; tx <= p.maxX / kTileSize; ++tx)
-        bins.lists[size_t(ty) * bins.tilesX + tx].push_back(i);
+  const size_t tiles = size_t(bins.tilesX) * size_t(bins.tilesY), prims = d.prims.size();
+  const size_t parts = prims >= kParallelBinPrimitives ? size_t(pool.threadCount()) : 1;
+  std::vector<uint32_t> at(parts * tiles, 0);  // counts, then each range's next entry per tile
+  const auto range = [&](size_t part, auto fn) {
+    for (size_t i = prims * part / parts, end = prims * (part + 1) / parts; i < end; ++i)
+      forTilesOf(d.prims[i], bins.tilesX, [&](size_t t) { fn(uint32_t(i), at[part * tiles + t]); });
+  };
+  const auto run = [&](auto fn) {
+    if (parts == 1) fn(0, 0);
+    else pool.parallelFor(parts, fn);
+  };
+  run([&](size_t part, int) { range(part, [](uint32_t, uint32_t& count) { ++count; }); });
+  bins.start.resize(tiles + 1);
+  uint32_t total = 0;
+  for (size_t t = 0; t < tiles; ++t) {
+    bins.start[t] = total;
+    for (size_t part = 0; part < parts; ++part) {
+      const uint32_t count = at[part * tiles + t];
+      at[part * tiles + t] = total;
+      total += count;
+    }
   }
+  bins.start[tiles] = total;
+  bins.entries.resize(total);
+  run([&](size_t part, int) { range(part, [&](uint32_t i, uint32_t& next) { bins.entries[next++] = i; }); });
 }
 
 // Per-lane pixel offsets inside a batch, as floats (interpolation).
@@ -393,8 +428,8 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
   const int x1 = std::min(x0 + kTileSize, d.width) - 1, y1 = std::min(y0 + kTileSize, d.height) - 1;
   uint64_t count = 0;  // local: the per-thread counters share cache lines
   beginTileFill(d, w.lazyFill, x0, y0, x1 + 1, y1 + 1, w.pending);
-  for (uint32_t pi : bins.lists[tile]) {
-    const Primitive& p = d.prims[pi];
+  for (uint32_t k = bins.start[tile]; k < bins.start[tile + 1]; ++k) {
+    const Primitive& p = d.prims[bins.entries[k]];
     const int minX = std::max(p.minX, x0) & ~3, minY = std::max(p.minY, y0) & ~3;
     const int maxX = std::min(p.maxX, x1), maxY = std::min(p.maxY, y1);
     const int blocks = w.coverBlocks(p, minX, minY, maxX, maxY, w.blocks);
@@ -514,10 +549,10 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
   const bool fill = draw.fill.color || draw.fill.depth || draw.fill.stencil;
   if (draw.prims.empty() && !fill) return;
   TileBins bins;
-  bin(draw, bins);
+  bin(draw, bins, pool);
   std::vector<size_t> busy;
-  for (size_t t = 0; t < bins.lists.size(); ++t)
-    if (fill || !bins.lists[t].empty()) busy.push_back(t);
+  for (size_t t = 0; t < bins.tiles(); ++t)
+    if (fill || bins.start[t + 1] > bins.start[t]) busy.push_back(t);
   const int threads = pool.threadCount();
   std::vector<TileWorker> workers(threads);
   for (auto& w : workers) {

@@ -1,4 +1,5 @@
-// Primitive setup of large draws in ranges on several threads (setupPrimitives): the
+// Primitive setup and binning of large draws in ranges on several threads
+// (setupPrimitives, rasterize): the
 // primitives must reach the rasterizer in draw order, so with no depth test the last
 // primitive over a pixel gives its color, and a strip's triangles keep the winding of
 // their position in the whole strip (odd ones swap two vertices) whatever range they
