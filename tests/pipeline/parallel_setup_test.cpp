@@ -1,9 +1,9 @@
 // Primitive setup and binning of large draws in ranges on several threads
-// (setupPrimitives, rasterize): the
-// primitives must reach the rasterizer in draw order, so with no depth test the last
-// primitive over a pixel gives its color, and a strip's triangles keep the winding of
-// their position in the whole strip (odd ones swap two vertices) whatever range they
-// are set up in. Expected colors follow from the geometry alone.
+// (setupPrimitives, rasterize): the primitives must reach each tile in draw order, so
+// with no depth test the last primitive over a pixel gives its color, and a strip's
+// triangles keep the winding of their position in the whole strip (odd ones swap two
+// vertices) whatever range they are set up in. Expected colors follow from the
+// geometry alone.
 #include <gtest/gtest.h>
 
 #include <vector>
