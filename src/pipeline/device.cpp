@@ -27,6 +27,10 @@ struct Device::Impl {
   ThreadPool pool;
   DrawPlanCache plans{kPlanCacheCapacity};
   std::vector<ShadedVertex> vertices;
+  // The last draw's primitive and plane lists, emptied: the next draw's start with their
+  // capacity (no allocation and no fresh pages per draw).
+  std::vector<Primitive> prims;
+  std::vector<float> planes;
   // A Clear not yet written: the next draw fills it tile by tile; anything else that
   // may look at the surfaces writes it first (resolveClear).
   RasterDraw::Fill pendingClear;
@@ -418,12 +422,22 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.pixelRestBuild = &pixelRestBuild;
   std::atomic<uint32_t> pixelBoundStops{0};
   d.execContext.boundStops = &pixelBoundStops;
+  d.prims.swap(impl_->prims);
+  d.planes.swap(impl_->planes);
   setupPrimitives(*plan, st, caps_.maxPointSize, type, primitiveCount, vertices, impl_->vertices, d, impl_->pool);
   stats_.primitives += primitiveCount;
   d.fill = impl_->pendingClear;
   impl_->pendingClear = {};
   keepUntouchedDepthClear(d, impl_->pendingClear);
   rasterize(d, impl_->pool);
+  d.prims.clear();
+  d.planes.clear();
+  // Kept for the next draw unless very large (one huge draw need not hold its memory).
+  constexpr size_t kKeptListBytes = size_t(64) << 20;
+  if (d.prims.capacity() * sizeof(Primitive) + d.planes.capacity() * sizeof(float) <= kKeptListBytes) {
+    d.prims.swap(impl_->prims);
+    d.planes.swap(impl_->planes);
+  }
   if (newPlan) {  // what runs the new plan's programs (compile time 0: compiled before)
     auto record = [&](const exec::Program& p, const exec::ProgramBuildInfo& b) {
       stats_.programBuilds.push_back({p.name, b.instructions, b.compileMicroseconds, b.backend});

@@ -279,6 +279,8 @@ void findInputCopies(RasterDraw& d, const std::vector<ShadedVertex>& verts, bool
 
 // Draws with fewer primitives are set up by one thread.
 constexpr uint32_t kParallelSetupPrimitives = 512;
+// The most primitives a draw's (or a range's) lists are reserved for up front.
+constexpr size_t kReservedPrimitives = size_t(1) << 16;
 
 void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPointSize,
                      PrimitiveType type, uint32_t primitiveCount, const DrawIndices& indices,
@@ -307,6 +309,15 @@ void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPoint
   };
   const bool pointSprite = st.rs(RS_POINTSPRITEENABLE) != 0;
   findInputCopies(d, verts, pointSprite);
+  // Room for the primitives before clipping (a triangle's invW, z and input planes), up
+  // to a bound: the lists of most draws grow without copies, and a huge draw, culled
+  // mostly, does not reserve for all its primitives.
+  const auto reserveFor = [&](uint32_t count, std::vector<Primitive>& prims, std::vector<float>& planes) {
+    const size_t n = std::min<size_t>(count, kReservedPrimitives);
+    prims.reserve(prims.size() + n);
+    planes.reserve(planes.size() + n * 3 * (2 + d.inputs.size()));
+  };
+  reserveFor(primitiveCount, d.prims, d.planes);  // all of them end in the draw's lists
 
   auto toScreen = [&](const Vec4* out, SetupVertex& s) {
     const Vec4& p = out[0];
@@ -488,8 +499,12 @@ void setupPrimitives(const DrawPlan& plan, const DeviceState& st, float maxPoint
     const uint32_t begin = uint32_t(uint64_t(primitiveCount) * c / size_t(threads));
     const uint32_t end = uint32_t(uint64_t(primitiveCount) * (c + 1) / size_t(threads));
     std::vector<ClipVertex> poly;
-    if (c == 0) setupRange(begin, end, {d.prims, d.planes}, poly);
-    else setupRange(begin, end, {prims[c - 1], planes[c - 1]}, poly);
+    if (c == 0) {
+      setupRange(begin, end, {d.prims, d.planes}, poly);
+      return;
+    }
+    reserveFor(end - begin, prims[c - 1], planes[c - 1]);
+    setupRange(begin, end, {prims[c - 1], planes[c - 1]}, poly);
   });
   for (size_t c = 0; c + 1 < size_t(threads); ++c) {
     const uint32_t offset = uint32_t(d.planes.size());
