@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 
 #include "draw_plan.h"
@@ -392,6 +393,15 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   if (vertices.count > (1u << 24))
     fail("draw references {} vertices; at most 16777216 are supported", vertices.count);
 
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point mark = Clock::now();
+  // Adds the time since the last mark to `total` and moves the mark.
+  const auto stageDone = [&mark](double& total) {
+    const Clock::time_point now = Clock::now();
+    total += std::chrono::duration<double, std::micro>(now - mark).count();
+    mark = now;
+  };
+  DrawStats::StageTimes& times = stats_.stageMicroseconds;
   DrawSurfaces surfaces;
   for (size_t i = 0; i < targets_.size(); ++i) surfaces.targets[i] = targets_[i].get();
   surfaces.depth = depth_.get();
@@ -406,11 +416,13 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
     impl_->plans.insert(std::move(key), plan);
   }
 
+  stageDone(times.plan);
   exec::PrepareOptions prepareOptions;
   prepareOptions.jit = options_.jit;
   exec::ProgramBuildInfo vertexBuild, pixelBuild, pixelRestBuild;
   const uint32_t vertexBoundStops = runVertexStage(*plan, st, impl_->pool, vertices.lo,
                                                    vertices.count, impl_->vertices, prepareOptions, vertexBuild);
+  stageDone(times.vertex);
   RasterDraw d;
   d.state = &st;
   PixelBindings pixelBindings;
@@ -425,11 +437,13 @@ void Device::draw(PrimitiveType type, uint32_t primitiveCount, int32_t baseVerte
   d.prims.swap(impl_->prims);
   d.planes.swap(impl_->planes);
   setupPrimitives(*plan, st, caps_.maxPointSize, type, primitiveCount, vertices, impl_->vertices, d, impl_->pool);
+  stageDone(times.setup);
   stats_.primitives += primitiveCount;
   d.fill = impl_->pendingClear;
   impl_->pendingClear = {};
   keepUntouchedDepthClear(d, impl_->pendingClear);
   rasterize(d, impl_->pool);
+  stageDone(times.raster);
   d.prims.clear();
   d.planes.clear();
   // Kept for the next draw unless very large (one huge draw need not hold its memory).

@@ -291,3 +291,30 @@ TEST(DrawPlanCache, RecordsWhatRunsANewPlansPrograms) {
     }
   }
 }
+
+// DrawStats::stageMicroseconds: every draw adds the wall time of its stages (each of
+// them takes some time, so every sum grows), an empty draw adds nothing, resetStats()
+// clears them.
+TEST(DrawStatsStageTimes, EachDrawAddsItsStagesTime) {
+  auto dev = makeDevice(4, 4);
+  dev->resetStats();
+  const DrawStats::StageTimes& t = dev->stats().stageMicroseconds;
+  EXPECT_EQ(t.plan + t.vertex + t.setup + t.raster, 0.0);
+  quad(*dev, 0xffffffff);
+  const DrawStats::StageTimes first = t;
+  EXPECT_GT(first.plan, 0.0);
+  EXPECT_GT(first.vertex, 0.0);
+  EXPECT_GT(first.setup, 0.0);
+  EXPECT_GT(first.raster, 0.0);
+  quad(*dev, 0xff00ff00);
+  EXPECT_GT(t.plan, first.plan);
+  EXPECT_GT(t.vertex, first.vertex);
+  EXPECT_GT(t.setup, first.setup);
+  EXPECT_GT(t.raster, first.raster);
+  const DrawStats::StageTimes second = t;
+  dev->drawPrimitive(PT_TRIANGLELIST, 0, 0);  // no primitives: no stage runs
+  EXPECT_EQ(t.vertex, second.vertex);
+  EXPECT_EQ(t.raster, second.raster);
+  dev->resetStats();
+  EXPECT_EQ(t.plan + t.vertex + t.setup + t.raster, 0.0);
+}

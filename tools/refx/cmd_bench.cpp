@@ -594,6 +594,14 @@ int runBench(const BenchOptions& o) {
               std::printf("; grouped lookups: %llu of %llu draws sampled %d blocks at a time",
                           static_cast<unsigned long long>(total.groupedLookupDraws),
                           static_cast<unsigned long long>(total.draws), refx::kMaxSampleGroup);
+            // The timed frames and the one before them that counted the pixels (the
+            // stats were reset before it).
+            const DrawStats::StageTimes& t = run.stageMicroseconds;
+            const double counted = double(frames + 1);
+            std::printf("\n  per frame: plan %.1f us, vertex %.1f us, setup %.1f us, binning and shading %.1f us"
+                        " (frame %.1f us)",
+                        t.plan / counted, t.vertex / counted, t.setup / counted, t.raster / counted,
+                        1e6 * elapsed / frames);
             std::printf("\n  program builds: %zu\n", total.programBuilds.size());
             for (const DrawStats::ProgramBuild& b : total.programBuilds)
               std::printf("    %-32s %5d instructions %10.1f us  %s\n", b.name.c_str(), b.instructions,

@@ -69,6 +69,14 @@ struct DrawStats {
     std::string backend;
   };
   std::vector<ProgramBuild> programBuilds;
+  // Wall time of the draws' stages, summed over draws, in microseconds: finding (or
+  // building) the plan, vertex fetch and processing, binding the pixel stage with
+  // clipping and setup, then binning and shading. Where a frame's time goes (`refx
+  // bench --verbose`).
+  struct StageTimes {
+    double plan = 0, vertex = 0, setup = 0, raster = 0;
+  };
+  StageTimes stageMicroseconds;
 };
 
 class Device {
