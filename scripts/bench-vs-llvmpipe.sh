@@ -1,8 +1,9 @@
 #!/bin/sh
 # Runs refx's and Mesa llvmpipe's versions of the same workloads alternately in one
 # run and prints, per workload, geometry, resolution and thread count: the median
-# Mpixels/s of each, the ratio refx/llvmpipe, and refx's cycles per pixel next to the
-# workload's FLOP-bound cycles per pixel (see `refx bench`). Workloads without an
+# Mpixels/s of each, the ratio refx/llvmpipe, refx's cycles per pixel next to the
+# workload's FLOP-bound cycles per pixel (see `refx bench`), and the lowest and highest
+# of the rounds' own ratios (a wide range: the machine was busy with something else). Workloads without an
 # llvmpipe version (RacorX10/11's multi-pass frames) print "-" for llvmpipe.
 #   scripts/bench-vs-llvmpipe.sh [ROUNDS] [SECONDS_PER_RUN]
 #   PAIRS="racorx9:specular" scripts/bench-vs-llvmpipe.sh   # a subset of the workloads
@@ -71,7 +72,7 @@ def res_key(r):
 keys = sorted({k[1:] for k in runs if k[0] == "refx"},
               key=lambda k: (order.index(k[0]) if k[0] in order else len(order), k[1] != "quad", res_key(k[2]), int(k[3])))
 print(f"{'workload':<10} {'llvmpipe':<9} {'geom':<7} {'res':<10} {'threads':>7} {'refx Mpix/s':>12} "
-      f"{'llvmpipe Mpix/s':>16} {'refx/llvmpipe':>14} {'refx cyc/px':>12} {'flop-cyc/px':>12}")
+      f"{'llvmpipe Mpix/s':>16} {'refx/llvmpipe':>14} {'refx cyc/px':>12} {'flop-cyc/px':>12} {'rounds min-max':>15}")
 def med(who, k, i):
     v = [x[i] for x in runs.get((who,) + k, [])]
     return statistics.median(v) if v else None
@@ -81,5 +82,10 @@ for k in keys:
     lm = med("llvmpipe", k, 0)
     lcol = f"{lm:>16.1f}" if lm else f"{'-':>16}"
     ratio = f"{rm / lm:>14.2f}" if lm else f"{'-':>14}"
-    print(f"{w:<10} {names.get(w, w):<9} {g:<7} {r:<10} {t:>7} {rm:>12.1f} {lcol} {ratio} {rc:>12.1f} {rf:>12.2f}")
+    # Each round's refx/llvmpipe (the two ran one after the other): how much the
+    # machine moved between rounds.
+    pairs = [a[0] / b[0] for a, b in zip(runs.get(("refx",) + k, []), runs.get(("llvmpipe",) + k, [])) if b[0]]
+    spread = f"{min(pairs):.2f}-{max(pairs):.2f}" if pairs else "-"
+    print(f"{w:<10} {names.get(w, w):<9} {g:<7} {r:<10} {t:>7} {rm:>12.1f} {lcol} {ratio} {rc:>12.1f} {rf:>12.2f}"
+          f" {spread:>15}")
 PY
