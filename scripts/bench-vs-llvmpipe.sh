@@ -3,8 +3,9 @@
 # run and prints, per workload, geometry, resolution and thread count: the median
 # Mpixels/s of each, the ratio refx/llvmpipe, refx's cycles per pixel next to the
 # workload's FLOP-bound cycles per pixel (see `refx bench`), and the lowest and highest
-# of the rounds' own ratios (a wide range: the machine was busy with something else). Workloads without an
-# llvmpipe version (RacorX10/11's multi-pass frames) print "-" for llvmpipe.
+# of the rounds' own ratios (a wide range: the machine was busy with something else).
+# Workloads without an llvmpipe version (RacorX10/11's multi-pass frames) print "-" for
+# llvmpipe.
 #   scripts/bench-vs-llvmpipe.sh [ROUNDS] [SECONDS_PER_RUN]
 #   PAIRS="racorx9:specular" scripts/bench-vs-llvmpipe.sh   # a subset of the workloads
 #   RES=1920x1080 THREADS=1 scripts/bench-vs-llvmpipe.sh     # one resolution, one thread count
