@@ -9,6 +9,7 @@
 // counterpart) on the same geometry; `fftexture` is the fixed-function MODULATE of the
 // texture and the lit diffuse colour (no llvmpipe counterpart). Each row also gives the cycles per pixel the cores
 // spent and the cycles the workload's FP32 arithmetic needs at the core's peak.
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -24,6 +25,7 @@
 #include "commands.h"
 #include "effect_scene.h"
 #include "refx/core/diagnostics.h"
+#include "refx/core/statistics.h"
 #include "refx/d3dx/mesh.h"
 #include "refx/effect/effect.h"
 #include "refx/hlsl/compiler.h"
@@ -557,10 +559,14 @@ int runBench(const BenchOptions& o) {
           const auto t0 = std::chrono::steady_clock::now();
           const double c0 = cycles.read();
           double elapsed = 0;
+          std::vector<double> frameMicroseconds;  // each timed frame's wall time
           while (o.frames > 0 ? frames < o.frames : elapsed < o.minTime) {
+            const auto frameStart = std::chrono::steady_clock::now();
             frame();
             ++frames;
-            elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const auto frameEnd = std::chrono::steady_clock::now();
+            frameMicroseconds.push_back(std::chrono::duration<double, std::micro>(frameEnd - frameStart).count());
+            elapsed = std::chrono::duration<double>(frameEnd - t0).count();
             if (tty)
               std::fprintf(stderr, "\r%s %s %s %d thr: %d frames, %.1fs", wl.c_str(), geom.c_str(), res.c_str(),
                            threads, frames, elapsed);
@@ -602,6 +608,12 @@ int runBench(const BenchOptions& o) {
                         " (frame %.1f us)",
                         t.plan / counted, t.vertex / counted, t.setup / counted, t.raster / counted,
                         1e6 * elapsed / frames);
+            // A busy machine shows as a spread between the fast frames and the slow ones.
+            std::sort(frameMicroseconds.begin(), frameMicroseconds.end());
+            std::printf("\n  frame times: min %.1f us, p10 %.1f us, median %.1f us, p90 %.1f us, max %.1f us",
+                        frameMicroseconds.front(), nearestRank(frameMicroseconds, 0.1),
+                        nearestRank(frameMicroseconds, 0.5), nearestRank(frameMicroseconds, 0.9),
+                        frameMicroseconds.back());
             std::printf("\n  program builds: %zu\n", total.programBuilds.size());
             for (const DrawStats::ProgramBuild& b : total.programBuilds)
               std::printf("    %-32s %5d instructions %10.1f us  %s\n", b.name.c_str(), b.instructions,
