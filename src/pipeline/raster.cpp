@@ -10,6 +10,7 @@
 #include "raster_coverage.h"
 #include "raster_fill.h"
 #include "raster_interpolate.h"
+#include "raster_lod.h"
 #include "refx/core/cpu_features.h"
 #include "refx/exec/lower.h"
 
@@ -87,6 +88,16 @@ struct GroupSlot {
   InputTarget passTargets[2];
 };
 
+// Where a group lookup's coordinates come from, for provenQuadRho: the places of their
+// u and v planes in RasterDraw::inputs, whether they are interpolated flat, and the
+// texture's level-0 size. uInput < 0: the lookups classify their quads themselves.
+struct LodSource {
+  int uInput = -1, vInput = -1;
+  bool uFlat = false, vFlat = false;
+  float width = 0, height = 0;
+  int sameAs = -1;  // an earlier source with the same coordinates and size
+};
+
 struct TileWorker {
   exec::BatchRegisters regs;
   std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations, in order
@@ -104,6 +115,10 @@ struct TileWorker {
   // pass-through sampler.
   bool grouped = false;
   std::array<GroupSlot, kMaxSampleGroup> group;
+  // The draw's group lookups (the pass-through's, or RasterDraw::prologue's in order)
+  // and, for the current primitive in the tile, what is proven of each one's ρ².
+  const std::vector<LodSource>* lodSources = nullptr;
+  std::vector<ProvenRho> provenRho;
 };
 
 // Eight lanes as one value (v8f, merge_kernels.h): interpolation is vectorised
@@ -372,7 +387,7 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
       u[g] = slot.passU, v[g] = slot.passV, out[g] = slot.packed;
       lanes[g] = items[g].mask;
     }
-    packedDone = d.passthroughSampler->sampleImplicitArgb8Group(n, u, v, lanes, out);
+    packedDone = d.passthroughSampler->sampleImplicitArgb8Group(n, u, v, lanes, out, w.provenRho[0]);
     for (int g = 0; g < n; ++g) {
       GroupSlot& slot = w.group[size_t(g)];
       if (!(packedDone >> g & 1))
@@ -397,10 +412,10 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
           (d.prologue[k + 1].file != a.file || d.prologue[k + 1].index != a.index)) {
         batchesOf(d.prologue[k + 1], batchesB);
         PreparedSampler::sampleImplicitPairGroup(*a.sampler, *d.prologue[k + 1].sampler, n, lanes, batchesA,
-                                                 batchesB);
+                                                 batchesB, w.provenRho[k]);
         ++k;
       } else {
-        a.sampler->sampleImplicitGroup(n, lanes, batchesA);
+        a.sampler->sampleImplicitGroup(n, lanes, batchesA, w.provenRho[k]);
       }
     }
   }
@@ -420,6 +435,53 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
   }
 }
 
+// TileWorker::provenRho for primitive p's blocks with lanes in [x0, x1] x [y0, y1].
+void proveRho(const RasterDraw& d, const Primitive& p, int x0, int y0, int x1, int y1, TileWorker& w) {
+  const std::vector<LodSource>& sources = *w.lodSources;
+  const float* pl = d.planes.data() + p.planeOffset;
+  for (size_t k = 0; k < sources.size(); ++k) {
+    const LodSource& s = sources[k];
+    ProvenRho& rho = w.provenRho[k];
+    if (s.sameAs >= 0) rho = w.provenRho[size_t(s.sameAs)];
+    else if (s.uInput < 0) rho = {};
+    else
+      rho = provenQuadRho(pl, {pl + 6 + 3 * s.uInput, s.uFlat}, {pl + 6 + 3 * s.vInput, s.vFlat}, p.originX,
+                          p.originY, x0, y0, x1, y1, s.width, s.height);
+  }
+}
+
+// The draw's LodSources: the pass-through's lookup, or each of RasterDraw::prologue's.
+std::vector<LodSource> lodSourcesOf(const RasterDraw& d) {
+  const auto inputOf = [&](int input, int component) {
+    for (size_t i = 0; i < d.inputs.size(); ++i)
+      if (d.inputs[i].input == input && d.inputs[i].component == component) return int(i);
+    return -1;
+  };
+  // flat: as the lanes are interpolated (the pass-through's never are, TileWorker::passTargets).
+  const auto source = [&](const PreparedSampler& sampler, int u, int v, bool asFlat) {
+    LodSource s;
+    if (u < 0 || v < 0 || !sampler.levelZeroSize(s.width, s.height)) return s;
+    s.uInput = u, s.vInput = v;
+    s.uFlat = asFlat && d.inputs[size_t(u)].flat, s.vFlat = asFlat && d.inputs[size_t(v)].flat;
+    return s;
+  };
+  std::vector<LodSource> sources;
+  if (d.passthroughSampler) {
+    const int u = d.passthroughInput;
+    sources.push_back(
+        source(*d.passthroughSampler, u, u >= 0 && size_t(u) + 1 < d.inputs.size() ? u + 1 : -1, false));
+  } else {
+    for (const RasterDraw::PrologueLookup& l : d.prologue)
+      sources.push_back(source(*l.sampler, inputOf(l.input, 0), inputOf(l.input, 1), true));
+  }
+  for (size_t k = 0; k < sources.size(); ++k)
+    for (size_t j = 0; j < k && sources[k].sameAs < 0; ++j)
+      if (sources[j].sameAs < 0 && sources[j].uInput == sources[k].uInput && sources[j].vInput == sources[k].vInput &&
+          sources[j].width == sources[k].width && sources[j].height == sources[k].height)
+        sources[k].sameAs = int(j);
+  return sources;
+}
+
 template <uint32_t F, bool Write, bool Opaque>
 void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorker& w,
                uint64_t& shaded) {
@@ -435,6 +497,7 @@ void shadeTile(const RasterDraw& d, const TileBins& bins, size_t tile, TileWorke
     const int blocks = w.coverBlocks(p, minX, minY, maxX, maxY, w.blocks);
     if constexpr (F != kAnyState) {
       if (w.grouped) {
+        if (blocks) proveRho(d, p, minX, minY, maxX | 3, maxY | 3, w);
         for (int i = 0; i < blocks; i += kMaxSampleGroup)
           shadeGroup<F, Write, Opaque>(d, p, w.blocks + i, std::min(kMaxSampleGroup, blocks - i), w, count);
         continue;
@@ -581,7 +644,10 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
   // Groups are for the tile loops compiled for a state (shadeGroup).
   draw.groupedLookups =
       (draw.pixelRest || draw.passthroughSampler) && tileLoop != shadeTile<kAnyState, false, false>;
+  const std::vector<LodSource> lodSources = draw.groupedLookups ? lodSourcesOf(draw) : std::vector<LodSource>{};
   for (auto& w : workers) {
+    w.lodSources = &lodSources;
+    w.provenRho.assign(lodSources.size(), ProvenRho{});
     w.grouped = draw.groupedLookups;
     if (w.grouped) prepareGroup(draw, w, &w == &workers[0] ? draw.pixelRestBuild : nullptr);
   }

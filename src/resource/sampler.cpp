@@ -1488,9 +1488,10 @@ bool PreparedSampler::sampleImplicitArgb8(const float* u, const float* v, uint16
   return p && p->uniformColors && p->uniformColors(p->uniformPlan, u ? u : kZeros, v ? v : kZeros, laneMask, out);
 }
 
-void PreparedSampler::sampleImplicitGroup(int count, const uint16_t* laneMasks, const SampleBatch* batches) const {
+void PreparedSampler::sampleImplicitGroup(int count, const uint16_t* laneMasks, const SampleBatch* batches,
+                                          ProvenRho proven) const {
   if (group_) {
-    group_(implicit_.context, count, laneMasks, batches);
+    group_(implicit_.context, count, laneMasks, batches, proven);
     return;
   }
   for (int g = 0; g < count; ++g)
@@ -1499,9 +1500,9 @@ void PreparedSampler::sampleImplicitGroup(int count, const uint16_t* laneMasks, 
 
 void PreparedSampler::sampleImplicitPairGroup(const PreparedSampler& a, const PreparedSampler& b, int count,
                                               const uint16_t* laneMasks, const SampleBatch* batchesA,
-                                              const SampleBatch* batchesB) {
+                                              const SampleBatch* batchesB, ProvenRho proven) {
   if (a.pairGroup_ && a.pairGroup_ == b.pairGroup_) {
-    a.pairGroup_(a.implicit_.context, b.implicit_.context, count, laneMasks, batchesA, batchesB);
+    a.pairGroup_(a.implicit_.context, b.implicit_.context, count, laneMasks, batchesA, batchesB, proven);
     return;
   }
   a.sampleImplicitGroup(count, laneMasks, batchesA);
@@ -1509,13 +1510,23 @@ void PreparedSampler::sampleImplicitPairGroup(const PreparedSampler& a, const Pr
 }
 
 uint32_t PreparedSampler::sampleImplicitArgb8Group(int count, const float* const* u, const float* const* v,
-                                                   const uint16_t* laneMasks, uint32_t* const* out) const {
+                                                   const uint16_t* laneMasks, uint32_t* const* out,
+                                                   ProvenRho proven) const {
   const auto* p = static_cast<const PreparedPlan*>(plan_.get());
-  if (p && p->uniformColorsGroup) return p->uniformColorsGroup(p->uniformPlan, count, u, v, laneMasks, out);
+  if (p && p->uniformColorsGroup)
+    return p->uniformColorsGroup(p->uniformPlan, count, u, v, laneMasks, out, proven);
   uint32_t done = 0;
   for (int g = 0; g < count; ++g)
     if (sampleImplicitArgb8(u[g], v[g], laneMasks[g], out[g])) done |= 1u << g;
   return done;
+}
+
+bool PreparedSampler::levelZeroSize(float& width, float& height) const {
+  const auto* p = static_cast<const PreparedPlan*>(plan_.get());
+  if (!p || !p->implicitGroup) return false;  // the group lookups are the AVX-512 ones
+  width = p->uniformPlan.size[0];
+  height = p->uniformPlan.size[1];
+  return true;
 }
 
 Kernel2D resource::selectKernel2D(TextureAddress au, TextureAddress av, bool linear, CpuIsa isa) {

@@ -427,6 +427,30 @@ constexpr int kMixed = -1;     // the quads' keys differ (they are in `keys`)
   return _mm_cmpeq_epi32_mask(__m128i(k), _mm_set1_epi32(key)) == 0xf ? key : kMixed;
 }
 
+// The key classifyBatch16 gives a quad whose ρ² has binary exponent e (and a mantissa
+// it reads), as the same steps in scalar arithmetic.
+inline int keyOfExponent(const UniformPlan& plan, int e) {
+  const int linear = e >= 0 ? plan.minLinear : plan.magLinear;
+  int level = (e + 1) >> 1;
+  level = level < plan.first ? plan.first : level;
+  level = level > plan.last ? plan.last : level;
+  if (plan.mipNone) level = 0;
+  return (level << 1) | linear;
+}
+
+// The key of every quad whose ρ² lies in range r, where it is one: the keys of the
+// binades at both ends agree (keys grow with the exponent), and an end near a binade's
+// edge, where classifyBatch16 declines, has the same key across that edge (there the
+// exact λ is near a whole level, or near 0 with one filter for both sides). -1: none.
+inline int keyOfRange(const UniformPlan& plan, const ProvenRho& r) {
+  if (r.low == kUnprovenExponent) return -1;
+  const int key = keyOfExponent(plan, r.low);
+  if (keyOfExponent(plan, r.high) != key) return -1;
+  if (r.lowNearEdge && keyOfExponent(plan, r.low - 1) != key) return -1;
+  if (r.highNearEdge && keyOfExponent(plan, r.high + 1) != key) return -1;
+  return key;
+}
+
 // The batch sampled at the level and with the filter classifyBatch16 finds. With Rest,
 // a batch it declines goes on to plan.rest, as a tail call (the common path then calls
 // nothing and keeps nothing across a call). Out as filter16's.
@@ -530,13 +554,14 @@ struct GroupBatch {
 // texels are not a block in memory, levels of different sizes) are left untouched.
 template <TextureAddress AU, TextureAddress AV, int T, class Out>
 [[gnu::noinline]] uint32_t sampleGroup16(const UniformPlan* const (&plans)[T], int count, const uint16_t* masks,
-                                         const GroupBatch<Out>* const (&batches)[T]) {
+                                         const GroupBatch<Out>* const (&batches)[T], ProvenRho proven) {
   int slot[kMaxSampleGroup];  // the batches still in the group
   const SampleLevel* levels[kMaxSampleGroup][T];
   int n = 0;
+  const int provenKey = keyOfRange(*plans[0], proven);
   for (int g = 0; g < count; ++g) {
     __m128i keys;
-    const int key = classifyBatch16(*plans[0], batches[0][g].u, batches[0][g].v, keys);
+    const int key = provenKey >= 0 ? provenKey : classifyBatch16(*plans[0], batches[0][g].u, batches[0][g].v, keys);
     if (key < 0 || !(key & 1)) continue;
     bool ok = true;
     for (int t = 0; t < T; ++t) {
@@ -584,14 +609,15 @@ template <TextureAddress AU, TextureAddress AV, int T, class Out>
 
 // PreparedSampler::ImplicitGroupFn: sampleGroup16, and implicit16 for what it leaves.
 template <TextureAddress AU, TextureAddress AV>
-void implicitGroup16(const void* context, int count, const uint16_t* laneMasks, const SampleBatch* batches) {
+void implicitGroup16(const void* context, int count, const uint16_t* laneMasks, const SampleBatch* batches,
+                     ProvenRho proven) {
   const UniformPlan& plan = *static_cast<const UniformPlan*>(context);
   GroupBatch<float (*)[kLanes]> group[kMaxSampleGroup];
   for (int g = 0; g < count; ++g)
     group[g] = {batches[g].coords[0], batches[g].coords[1], batches[g].coords[2], batches[g].out};
   const UniformPlan* const plans[1] = {&plan};
   const GroupBatch<float (*)[kLanes]>* const sets[1] = {group};
-  const uint32_t done = sampleGroup16<AU, AV, 1>(plans, count, laneMasks, sets);
+  const uint32_t done = sampleGroup16<AU, AV, 1>(plans, count, laneMasks, sets, proven);
   for (int g = 0; g < count; ++g)
     if (!(done >> g & 1)) implicit16<AU, AV>(&plan, group[g].u, group[g].v, group[g].w, laneMasks[g], group[g].out);
 }
@@ -600,7 +626,7 @@ void implicitGroup16(const void* context, int count, const uint16_t* laneMasks, 
 // whose coordinates are the same for both, implicitPair16 for the others.
 template <TextureAddress AU, TextureAddress AV>
 void implicitPairGroup16(const void* contextA, const void* contextB, int count, const uint16_t* laneMasks,
-                         const SampleBatch* batchesA, const SampleBatch* batchesB) {
+                         const SampleBatch* batchesA, const SampleBatch* batchesB, ProvenRho proven) {
   const UniformPlan& a = *static_cast<const UniformPlan*>(contextA);
   const UniformPlan& b = *static_cast<const UniformPlan*>(contextB);
   GroupBatch<float (*)[kLanes]> groupA[kMaxSampleGroup], groupB[kMaxSampleGroup];
@@ -619,7 +645,7 @@ void implicitPairGroup16(const void* contextA, const void* contextB, int count, 
     }
     const UniformPlan* const plans[2] = {&a, &b};
     const GroupBatch<float (*)[kLanes]>* const sets[2] = {groupA, groupB};
-    const uint32_t sampled = sampleGroup16<AU, AV, 2>(plans, n, masks, sets);
+    const uint32_t sampled = sampleGroup16<AU, AV, 2>(plans, n, masks, sets, proven);
     for (int i = 0; i < n; ++i)
       if (sampled >> i & 1) done |= 1u << at[i];
   }
@@ -633,12 +659,12 @@ void implicitPairGroup16(const void* contextA, const void* contextB, int count, 
 // then uniformColors16 for the batches it leaves. Returns the batches written.
 template <TextureAddress AU, TextureAddress AV>
 uint32_t uniformColorsGroup16(const UniformPlan& plan, int count, const float* const* u, const float* const* v,
-                              const uint16_t* laneMasks, uint32_t* const* out) {
+                              const uint16_t* laneMasks, uint32_t* const* out, ProvenRho proven) {
   GroupBatch<uint32_t*> group[kMaxSampleGroup];
   for (int g = 0; g < count; ++g) group[g] = {u[g], v[g], nullptr, out[g]};
   const UniformPlan* const plans[1] = {&plan};
   const GroupBatch<uint32_t*>* const sets[1] = {group};
-  uint32_t done = sampleGroup16<AU, AV, 1>(plans, count, laneMasks, sets);
+  uint32_t done = sampleGroup16<AU, AV, 1>(plans, count, laneMasks, sets, proven);
   for (int g = 0; g < count; ++g)
     if (!(done >> g & 1) && uniformColors16<AU, AV>(plan, u[g], v[g], laneMasks[g], out[g])) done |= 1u << g;
   return done;

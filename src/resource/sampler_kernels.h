@@ -65,7 +65,8 @@ ImplicitPairGroup2D selectImplicitPairGroup2DAvx512(TextureAddress au, TextureAd
 // UniformColors2D for `count` batches (at most kMaxSampleGroup): batch g at (u[g], v[g])
 // into out[g]. Returns the batches written (bit g), what count UniformColors2D calls give.
 using UniformColorsGroup2D = uint32_t (*)(const UniformPlan&, int count, const float* const* u,
-                                          const float* const* v, const uint16_t* laneMasks, uint32_t* const* out);
+                                          const float* const* v, const uint16_t* laneMasks, uint32_t* const* out,
+                                          ProvenRho proven);
 UniformColorsGroup2D selectUniformColorsGroup2DAvx512(TextureAddress au, TextureAddress av);
 
 namespace kernels {

@@ -64,6 +64,17 @@ struct SampleBatch {
 };
 // Four: the group's registers and footprints stay in the L1 cache with the texels.
 constexpr int kMaxSampleGroup = 4;
+// What a caller has proven of every quad's ρ² in a group's lookups (ρ² as the texture's
+// level-0 size, levelZeroSize(), scales it): 2^low <= ρ² < 2^(high + 1); lowNearEdge:
+// ρ² may lie within 2^-11 (relative) above 2^low, highNearEdge: within 2^-11 below
+// 2^(high + 1), where the exponent alone does not tell the level and filter. Where the
+// range allows one level and filter only, the lookups use them for every quad instead
+// of classifying each batch's quads. low == kUnprovenExponent: nothing is proven.
+constexpr int kUnprovenExponent = -1000;
+struct ProvenRho {
+  int low = kUnprovenExponent, high = kUnprovenExponent;
+  bool lowNearEdge = false, highNearEdge = false;
+};
 
 // A texture and sampler state prepared for many requests (one draw): the checks
 // sampleTexture makes per call (addressing, filters, which levels the vectorised
@@ -111,19 +122,26 @@ class PreparedSampler {
   // laneMasks[g], result into batches[g].out). The batches' work is interleaved phase
   // by phase so that their long dependency chains overlap.
   using ImplicitGroupFn = void (*)(const void* context, int count, const uint16_t* laneMasks,
-                                   const SampleBatch* batches);
-  void sampleImplicitGroup(int count, const uint16_t* laneMasks, const SampleBatch* batches) const;
+                                   const SampleBatch* batches, ProvenRho proven);
+  void sampleImplicitGroup(int count, const uint16_t* laneMasks, const SampleBatch* batches,
+                           ProvenRho proven = {}) const;
   // The group lookups of two samplers (batchesA of this one, batchesB of `b`): what
   // implicitPair() gives for each batch, where both have the same implicitPairGroup().
   using ImplicitPairGroupFn = void (*)(const void* a, const void* b, int count, const uint16_t* laneMasks,
-                                       const SampleBatch* batchesA, const SampleBatch* batchesB);
+                                       const SampleBatch* batchesA, const SampleBatch* batchesB,
+                                       ProvenRho proven);
+  // proven: of the quads' ρ² at batchesA's coordinates with a's levelZeroSize().
   static void sampleImplicitPairGroup(const PreparedSampler& a, const PreparedSampler& b, int count,
                                       const uint16_t* laneMasks, const SampleBatch* batchesA,
-                                      const SampleBatch* batchesB);
+                                      const SampleBatch* batchesB, ProvenRho proven = {});
   // sampleImplicitArgb8 for a group of batches: batch g at (u[g], v[g]) into out[g].
   // Returns the batches written (bit g), as count sampleImplicitArgb8 calls would.
   uint32_t sampleImplicitArgb8Group(int count, const float* const* u, const float* const* v,
-                                    const uint16_t* laneMasks, uint32_t* const* out) const;
+                                    const uint16_t* laneMasks, uint32_t* const* out,
+                                    ProvenRho proven = {}) const;
+  // The level-0 size the group lookups measure ρ² with (ProvenRho), where they take a
+  // proven range; false: they never do (a ProvenRho is ignored).
+  bool levelZeroSize(float& width, float& height) const;
 
  private:
   const Texture* tex_;
