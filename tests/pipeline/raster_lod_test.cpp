@@ -24,17 +24,21 @@ namespace {
 
 const float kUnitW[3] = {1, 0, 0};  // 1/w = 1 everywhere
 
+// A range from binade `low` to binade `high`, both ends away from the binades' edges.
+void expectRange(const ProvenRho& rho, int low, int high) {
+  EXPECT_EQ(rho.low, low);
+  EXPECT_EQ(rho.high, high);
+  EXPECT_FALSE(rho.lowNearEdge);
+  EXPECT_FALSE(rho.highNearEdge);
+}
+
 // u = x/128 and v = y/128 on a 256² texture: every difference times the size is 2, so
 // ρ² = 2² + 0² = 4 in every quad. The bounds hold 4 with rounding margins on both
 // sides: from just below 4 (binade 1, [2, 4)) to just above (binade 2, [4, 8)), far
 // from the edges at 2 and 8.
 TEST(ProvenQuadRho, AffineCoordinatesOfAKnownScale) {
   const float u[3] = {0, 1.0f / 128, 0}, v[3] = {0, 0, 1.0f / 128};
-  const ProvenRho rho = provenQuadRho(kUnitW, {u, false}, {v, false}, 0.5f, 0.5f, 0, 0, 63, 63, 256, 256);
-  EXPECT_EQ(rho.low, 1);
-  EXPECT_EQ(rho.high, 2);
-  EXPECT_FALSE(rho.lowNearEdge);
-  EXPECT_FALSE(rho.highNearEdge);
+  expectRange(provenQuadRho(kUnitW, {u, false}, {v, false}, 0.5f, 0.5f, 0, 0, 63, 63, 256, 256), 1, 2);
   // x/256 and y/256: ρ² = 1, between binades -1 and 0.
   const float u1[3] = {0, 1.0f / 256, 0}, v1[3] = {0, 0, 1.0f / 256};
   const ProvenRho one = provenQuadRho(kUnitW, {u1, true}, {v1, true}, 0.5f, 0.5f, 0, 0, 63, 63, 256, 256);
@@ -43,11 +47,7 @@ TEST(ProvenQuadRho, AffineCoordinatesOfAKnownScale) {
   // x/100 and y/300 on 256²: the differences times the size are 2.56 and 0.853..., so
   // ρ² = max(2.56², 0.853²) = 6.5536, inside binade 2 ([4, 8)) and far from its edges.
   const float u2[3] = {0.25f, 1.0f / 100, 0}, v2[3] = {0.75f, 0, 1.0f / 300};
-  const ProvenRho inside = provenQuadRho(kUnitW, {u2, false}, {v2, false}, 10.5f, 20.5f, 8, 16, 39, 47, 256, 256);
-  EXPECT_EQ(inside.low, 2);
-  EXPECT_EQ(inside.high, 2);
-  EXPECT_FALSE(inside.lowNearEdge);
-  EXPECT_FALSE(inside.highNearEdge);
+  expectRange(provenQuadRho(kUnitW, {u2, false}, {v2, false}, 10.5f, 20.5f, 8, 16, 39, 47, 256, 256), 2, 2);
 }
 
 // 1/w that reaches 0 or below in the region: no bound.
