@@ -88,7 +88,7 @@ struct FrameContents {
 inline FrameContents readFrame(const Texture& target, const DepthStencilSurface& ds) {
   FrameContents f;
   f.color.assign(target.data(0, 0), target.data(0, 0) + size_t(target.rowPitch(0)) * size_t(target.height(0)));
-  f.depth = ds.depth;
+  f.depth.assign(ds.depth.begin(), ds.depth.end());
   return f;
 }
 

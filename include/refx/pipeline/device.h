@@ -10,6 +10,7 @@
 
 #include "refx/core/color.h"
 #include "refx/core/diagnostics.h"
+#include "refx/core/large_buffer.h"
 #include "refx/core/precision.h"
 #include "refx/pipeline/caps.h"
 #include "refx/pipeline/shader_object.h"
@@ -20,8 +21,8 @@ namespace refx {
 // Depth/stencil surface (D24S8 semantics: 24-bit depth as float in [0,1], 8-bit stencil).
 struct DepthStencilSurface {
   int width = 0, height = 0;
-  std::vector<float> depth;
-  std::vector<uint8_t> stencil;
+  LargeBuffer<float> depth;
+  LargeBuffer<uint8_t> stencil;
   DepthStencilSurface(int w, int h) : width(w), height(h), depth(size_t(w) * h, 1.0f),
                                       stencil(size_t(w) * h, 0) {}
 };

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "refx/core/color.h"
+#include "refx/core/large_buffer.h"
 #include "refx/resource/format.h"
 
 namespace refx {
@@ -18,7 +19,7 @@ enum class TextureType { Texture2D, Cube, Volume };
 struct SampleLevel {
   int width = 0, height = 0, depth = 1;
   bool unorm8 = false;
-  std::vector<uint32_t> rgba8;  // width*height*depth, when unorm8
+  LargeBuffer<uint32_t> rgba8;  // width*height*depth, when unorm8
   std::vector<Color4> rgbaf;    // width*height*depth, otherwise
 };
 
@@ -63,7 +64,7 @@ class Texture {
   TextureType type_;
   Format format_;
   int width_, height_, depth_, levels_;
-  std::vector<std::vector<uint8_t>> storage_;  // [face*levels + level]
+  std::vector<LargeBuffer<uint8_t>> storage_;  // [face*levels + level]
   mutable std::vector<std::atomic<const SampleLevel*>> decoded_;  // published levels
   mutable std::vector<std::unique_ptr<SampleLevel>> decodedOwned_;  // guarded by decodeMutex_
   mutable std::mutex decodeMutex_;
