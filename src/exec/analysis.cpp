@@ -77,7 +77,49 @@ std::optional<TexturePrologue> findTexturePrologue(const Program& program) {
   found.rest.code.clear();
   for (size_t n = 0; n < program.code.size(); ++n)
     if (!moved[n]) found.rest.code.push_back(program.code[n]);
+  for (TexturePrologue::Lookup& l : found.lookups) {
+    int writers = 0;
+    for (const TexturePrologue::Lookup& o : found.lookups) writers += o.file == l.file && o.index == l.index;
+    // Outputs are read after the program; a register two lookups write keeps all.
+    if (l.file == RegFile::Temp && writers == 1) l.channels = channelsRead(found.rest, l.index);
+  }
   return found;
+}
+
+namespace {
+
+// The components of source `s` instruction `in` reads for its write mask, before the
+// swizzle (0xF for the ops whose reads are not per component or a fixed set).
+uint8_t componentsReadBy(const Instr& in, int s) {
+  switch (in.op) {
+    case Op::Mov: case Op::Add: case Op::Sub: case Op::Mul: case Op::Mad: case Op::Min: case Op::Max:
+    case Op::Slt: case Op::Sge: case Op::Frc: case Op::Lrp: case Op::Cmp: case Op::Cnd: case Op::Abs:
+    case Op::Floor: case Op::Round: case Op::Sgn:
+      return in.dst.mask;
+    case Op::Dp3: return 0x7;
+    default: (void)s; return 0xF;
+  }
+}
+
+}  // namespace
+
+uint8_t channelsRead(const Program& program, int index) {
+  if (program.flowControl) return 0xF;
+  uint8_t read = 0;
+  for (const Instr& in : program.code) {
+    for (int i = 0; i < sourceCount(in.op); ++i) {
+      const Src& s = in.src[size_t(i)];
+      if (s.file != RegFile::Temp) continue;
+      if (s.rel != RelMode::None) return 0xF;
+      if (s.index != index) continue;
+      const uint8_t used = componentsReadBy(in, i);
+      for (int c = 0; c < 4; ++c)
+        if (used >> c & 1) read = uint8_t(read | 1u << (s.swizzle >> (2 * c) & 3));
+    }
+    if (in.dst.file == RegFile::Temp && in.dst.rel != RelMode::None) return 0xF;
+    if (in.dst.file == RegFile::Temp && in.dst.index == index && in.dst.mask == 0xF) break;
+  }
+  return read;
 }
 
 }  // namespace refx::exec

@@ -401,7 +401,7 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
       for (int g = 0; g < n; ++g) {
         exec::BatchRegisters& regs = w.group[size_t(g)].regs;
         auto& file = l.file == exec::RegFile::Output ? regs.outputs : regs.temps;
-        batches[g] = {regs.inputs[size_t(l.input)].c, file[size_t(l.index)].c};
+        batches[g] = {regs.inputs[size_t(l.input)].c, file[size_t(l.index)].c, l.channels};
       }
     };
     for (size_t k = 0; k < d.prologue.size(); ++k) {

@@ -140,6 +140,7 @@ struct RasterDraw {
     int input = 0;                             // the coordinates' input register
     exec::RegFile file = exec::RegFile::Temp;  // the result's register
     int index = 0;
+    uint8_t channels = 0xF;  // the result's components the rest of the program reads
   };
   std::vector<PrologueLookup> prologue;
   const exec::Program* pixelRest = nullptr;

@@ -246,7 +246,7 @@ inline void linearWeights(v16i fixedX, v16i fixedY, v32h& wx2, v16f& fy) {
 // linearWeights' wx2 and fy, stored into `out` (Out: see filterLevels).
 template <bool Merge, class Out>
 [[gnu::always_inline]] inline void blendTexels(v16u p00, v16u p10, v16u p01, v16u p11, v32h wx2, v16f fy,
-                                               __mmask16 mask, Out out) {
+                                               __mmask16 mask, Out out, uint8_t channels = 0xF) {
   const v16u m = v16u{} + 0x00ff00ffu;
   // (p >> 8) & 0x00ff00ff is the 16-bit halves shifted right by 8 (one vpsrlw).
   const auto highBytes = [](v16u p) { return v16u(v32h(p) >> 8); };
@@ -259,10 +259,11 @@ template <bool Merge, class Out>
     const v16i b = columnByte<16>(topRB, bottomRB, fy), a = columnByte<16>(topGA, bottomGA, fy);
     storeColors<Merge>(out, v16u((a << 24) | (r << 16) | (g << 8) | b), mask);
   } else {
-    store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
-    store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
-    store<Merge>(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
-    store<Merge>(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
+    // Channels nobody reads are not written (the same for every batch of a draw).
+    if (channels & 1) store<Merge>(out[0], columnLerp<0>(topRB, bottomRB, fy), mask);
+    if (channels & 2) store<Merge>(out[1], columnLerp<0>(topGA, bottomGA, fy), mask);
+    if (channels & 4) store<Merge>(out[2], columnLerp<16>(topRB, bottomRB, fy), mask);
+    if (channels & 8) store<Merge>(out[3], columnLerp<16>(topGA, bottomGA, fy), mask);
   }
 }
 
@@ -541,6 +542,7 @@ template <class Out>
 struct GroupBatch {
   const float *u, *v, *w;
   Out out;
+  uint8_t channels = 0xF;  // SampleBatch::channels (float output only)
 };
 
 // Up to kMaxSampleGroup batches of LINEAR footprints sampled phase by phase rather than
@@ -601,7 +603,7 @@ template <TextureAddress AU, TextureAddress AV, int T, class Out>
     const int g = slot[i];
     for (int t = 0; t < T; ++t)
       blendTexels<false>(texels[i][t][0], texels[i][t][1], texels[i][t][2], texels[i][t][3], wx2[i], fy[i],
-                         __mmask16(masks[g]), batches[t][g].out);
+                         __mmask16(masks[g]), batches[t][g].out, batches[t][g].channels);
     done |= 1u << g;
   }
   return done;
@@ -614,7 +616,7 @@ void implicitGroup16(const void* context, int count, const uint16_t* laneMasks, 
   const UniformPlan& plan = *static_cast<const UniformPlan*>(context);
   GroupBatch<float (*)[kLanes]> group[kMaxSampleGroup];
   for (int g = 0; g < count; ++g)
-    group[g] = {batches[g].coords[0], batches[g].coords[1], batches[g].coords[2], batches[g].out};
+    group[g] = {batches[g].coords[0], batches[g].coords[1], batches[g].coords[2], batches[g].out, batches[g].channels};
   const UniformPlan* const plans[1] = {&plan};
   const GroupBatch<float (*)[kLanes]>* const sets[1] = {group};
   const uint32_t done = sampleGroup16<AU, AV, 1>(plans, count, laneMasks, sets, proven);
@@ -638,8 +640,8 @@ void implicitPairGroup16(const void* contextA, const void* contextB, int count, 
     for (int g = 0; g < count; ++g) {
       if (!sameCoordinates(batchesA[g].coords, batchesB[g].coords)) continue;
       const float(*c)[kLanes] = batchesA[g].coords;
-      groupA[n] = {c[0], c[1], c[2], batchesA[g].out};
-      groupB[n] = {c[0], c[1], c[2], batchesB[g].out};
+      groupA[n] = {c[0], c[1], c[2], batchesA[g].out, batchesA[g].channels};
+      groupB[n] = {c[0], c[1], c[2], batchesB[g].out, batchesB[g].channels};
       masks[n] = laneMasks[g];
       at[n++] = g;
     }

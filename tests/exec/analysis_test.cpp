@@ -122,5 +122,40 @@ TEST(TexturePrologue, NoneWithoutALeadingPlainLookup) {
                         "mov r0, r0.y\nendif\nmov oC0, r0\n"));
 }
 
+// Which components of each lookup's result the rest reads, by D3D's definitions of the
+// instructions: dp3 reads .xyz of its sources, mul/mad/add the written components
+// through the source's swizzle.
+TEST(TexturePrologue, ChannelsTheRestReads) {
+  // RacorX6: t0 goes whole into r0 (mul r0, t0, r1: rgba); t1 only into dp3: rgb.
+  auto p = prologue("ps_1_1\ntex t0\ntex t1\ndp3 r1, t1_bx2, v0_bx2\nmul r0, t0, r1\n");
+  ASSERT_TRUE(p);
+  ASSERT_EQ(p->lookups.size(), 2u);
+  EXPECT_EQ(p->lookups[0].channels, 0xF);
+  EXPECT_EQ(p->lookups[1].channels, 0x7);
+  // mul r0.xy, r1.zw: the write mask xy through the swizzle zwzw reads z and w only;
+  // r2.y's replicate reads y; the r2 written whole after that is another value.
+  p = prologue("ps_2_0\ndcl t0\ndcl_2d s0\ntexld r1, t0, s0\ntexld r2, t0, s0\n"
+               "mul r0.xy, r1.zw, c0\nmov r0.zw, r2.y\nmov r2, c1\nadd r0, r0, r2\nmov oC0, r0\n");
+  ASSERT_TRUE(p);
+  ASSERT_EQ(p->lookups.size(), 2u);
+  EXPECT_EQ(p->lookups[0].channels, 0xC);
+  EXPECT_EQ(p->lookups[1].channels, 0x2);
+  // r0.x replicated into all of oC0: x alone.
+  p = prologue("ps_2_0\ndcl t0\ndcl_2d s0\ntexld r0, t0, s0\nmov oC0, r0.x\n");
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->lookups[0].channels, 0x1);
+}
+
+TEST(ChannelsRead, WholeWhereNotPlain) {
+  // dp4 reads all four; a result nobody reads has none.
+  Program p = lowerShader(shader::decode(shader::assembleTokens(
+                              "ps_2_0\ndcl t0\ndcl_2d s0\ntexld r1, t0, s0\ndp4 r0, r1, c0\nmov oC0, r0\n", "test")))
+                  .program;
+  const auto p1 = findTexturePrologue(p);
+  ASSERT_TRUE(p1);
+  EXPECT_EQ(p1->lookups[0].channels, 0xF);
+  EXPECT_EQ(channelsRead(p1->rest, 7), 0x0);
+}
+
 }  // namespace
 }  // namespace refx::exec

@@ -34,10 +34,18 @@ struct TexturePrologue {
     int input = 0;  // the coordinates' input register
     RegFile file = RegFile::Temp;  // the result's register
     int index = 0;
+    // The result's components `rest` reads (bit c: component c; channelsRead); the
+    // others need not be written.
+    uint8_t channels = 0xF;
   };
   std::vector<Lookup> lookups;
   Program rest;
 };
 std::optional<TexturePrologue> findTexturePrologue(const Program& program);
+
+// The components of temporary register `index` that `program` reads before it writes
+// the whole register (bit c: component c), from each op's reads, the write masks and
+// the swizzles. 0xF wherever that is not plain: flow control, relative addressing.
+uint8_t channelsRead(const Program& program, int index);
 
 }  // namespace refx::exec

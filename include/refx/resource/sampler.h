@@ -61,6 +61,7 @@ void sampleTexture(const Texture& tex, const SamplerState& state, const SampleRe
 struct SampleBatch {
   const float (*coords)[kBatchLanes];
   float (*out)[kBatchLanes];
+  uint8_t channels = 0xF;  // the components of `out` wanted (bit c: component c); others may be left as they are
 };
 // Four: the group's registers and footprints stay in the L1 cache with the texels.
 constexpr int kMaxSampleGroup = 4;
