@@ -137,6 +137,18 @@ inline void loadPairs16(const uint32_t* texels, v16i a, v16u& first, v16u& secon
   second = v16u(_mm512_permutex2var_epi32(lo, odd, hi));
 }
 
+// fn(l, ix[l]) for the 16 lanes' texel indices (not negative), read two per 64-bit
+// load: the texel loops are bound by load µops, and a shift is cheaper than a load.
+template <class Fn>
+[[gnu::always_inline]] inline void forEachIndex(const int (&ix)[16], Fn fn) {
+  uint64_t pairs[8];
+  std::memcpy(pairs, ix, sizeof pairs);
+  for (int k = 0; k < 8; ++k) {
+    fn(2 * k, size_t(uint32_t(pairs[k])));
+    fn(2 * k + 1, size_t(pairs[k] >> 32));
+  }
+}
+
 // Texel pairs a[l], a[l] + 1 (top row) and a[l] + w, a[l] + w + 1 (bottom row) of every
 // lane: scalar 64-bit loads, the indices read back from memory, then a transpose
 // (loadQuads8 of sampler.cpp, 16 lanes). Faster than four vpgatherdq on current cores.
@@ -150,11 +162,11 @@ inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& 
   const uint32_t* below = texels + w;
   asm("" : "+r"(below));
   __m128i q[16];
-  for (int l = 0; l < 16; ++l) {
-    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texels + ix[l]));
-    q[l] = _mm_castpd_si128(
-        _mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(below + ix[l])));
-  }
+  const auto lane = [&](int l, size_t i) {
+    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texels + i));
+    q[l] = _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(below + i)));
+  };
+  forEachIndex(ix, lane);
   // q[l] = t00 t10 t01 t11 of lane l. Lanes l, l + 4, l + 8, l + 12 share a register (one
   // per 128-bit block), then a 4x4 transpose within each block gives the texel vectors.
   __m512i r[4];
@@ -168,6 +180,41 @@ inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& 
   p10 = v16u(_mm512_unpackhi_epi64(a01, a23));
   p01 = v16u(_mm512_unpacklo_epi64(b01, b23));
   p11 = v16u(_mm512_unpackhi_epi64(b01, b23));
+}
+
+// loadQuads16 of two textures of one size at the same indices: each lane's index read
+// back once for the four loads of both.
+inline void loadQuadsPair16(const uint32_t* texelsA, const uint32_t* texelsB, v16i a, int w, v16u (&pa)[4],
+                            v16u (&pb)[4]) {
+  alignas(64) int ix[16];
+  std::memcpy(ix, &a, sizeof ix);
+  asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
+  const uint32_t* belowA = texelsA + w;
+  const uint32_t* belowB = texelsB + w;
+  asm("" : "+r"(belowA), "+r"(belowB));
+  __m128i qa[16], qb[16];
+  const auto lane = [&](int l, size_t i) {
+    const __m128i topA = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texelsA + i));
+    const __m128i topB = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texelsB + i));
+    qa[l] = _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(topA), reinterpret_cast<const double*>(belowA + i)));
+    qb[l] = _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(topB), reinterpret_cast<const double*>(belowB + i)));
+  };
+  forEachIndex(ix, lane);
+  const auto transpose = [](const __m128i (&q)[16], v16u (&p)[4]) {
+    __m512i r[4];
+    for (int l = 0; l < 4; ++l) {
+      const __m256i lo = _mm256_setr_m128i(q[l], q[l + 4]), hi = _mm256_setr_m128i(q[l + 8], q[l + 12]);
+      r[l] = _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+    }
+    const __m512i a01 = _mm512_unpacklo_epi32(r[0], r[1]), b01 = _mm512_unpackhi_epi32(r[0], r[1]);
+    const __m512i a23 = _mm512_unpacklo_epi32(r[2], r[3]), b23 = _mm512_unpackhi_epi32(r[2], r[3]);
+    p[0] = v16u(_mm512_unpacklo_epi64(a01, a23));
+    p[1] = v16u(_mm512_unpackhi_epi64(a01, a23));
+    p[2] = v16u(_mm512_unpacklo_epi64(b01, b23));
+    p[3] = v16u(_mm512_unpackhi_epi64(b01, b23));
+  };
+  transpose(qa, pa);
+  transpose(qb, pb);
 }
 
 inline v16f channel(v16u p, int shift) { return toFloat(v16i((p >> shift) & 255u)); }
@@ -594,10 +641,16 @@ template <TextureAddress AU, TextureAddress AV, int T, class Out>
     ++m;
   }
   v16u texels[kMaxSampleGroup][T][4];
-  for (int i = 0; i < m; ++i)
+  for (int i = 0; i < m; ++i) {
+    if constexpr (T == 2) {  // the levels have one size (above)
+      loadQuadsPair16(levels[i][0]->rgba8.data(), levels[i][1]->rgba8.data(), index[i], levels[i][0]->width,
+                      texels[i][0], texels[i][1]);
+      continue;
+    }
     for (int t = 0; t < T; ++t)
       loadQuads16(levels[i][t]->rgba8.data(), index[i], levels[i][t]->width, texels[i][t][0], texels[i][t][1],
                   texels[i][t][2], texels[i][t][3]);
+  }
   uint32_t done = 0;
   for (int i = 0; i < m; ++i) {
     const int g = slot[i];
