@@ -149,26 +149,10 @@ template <class Fn>
   }
 }
 
-// Texel pairs a[l], a[l] + 1 (top row) and a[l] + w, a[l] + w + 1 (bottom row) of every
-// lane: scalar 64-bit loads, the indices read back from memory, then a transpose
-// (loadQuads8 of sampler.cpp, 16 lanes). Faster than four vpgatherdq on current cores.
-inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& p10, v16u& p01,
-                        v16u& p11) {
-  alignas(64) int ix[16];
-  std::memcpy(ix, &a, sizeof ix);
-  asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
-  // The bottom row from its own base register: both loads of a lane take its index as
-  // is, with no address arithmetic per lane (the compiler would otherwise add w to it).
-  const uint32_t* below = texels + w;
-  asm("" : "+r"(below));
-  __m128i q[16];
-  const auto lane = [&](int l, size_t i) {
-    const __m128i top = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texels + i));
-    q[l] = _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(top), reinterpret_cast<const double*>(below + i)));
-  };
-  forEachIndex(ix, lane);
-  // q[l] = t00 t10 t01 t11 of lane l. Lanes l, l + 4, l + 8, l + 12 share a register (one
-  // per 128-bit block), then a 4x4 transpose within each block gives the texel vectors.
+// q[l] = t00 t10 t01 t11 of lane l as the texel vectors p00 p10 p01 p11: lanes l, l + 4,
+// l + 8, l + 12 share a register (one per 128-bit block), then a 4x4 transpose within
+// each block.
+inline void transposeQuads(const __m128i (&q)[16], v16u (&p)[4]) {
   __m512i r[4];
   for (int l = 0; l < 4; ++l) {
     const __m256i lo = _mm256_setr_m128i(q[l], q[l + 4]), hi = _mm256_setr_m128i(q[l + 8], q[l + 12]);
@@ -176,45 +160,47 @@ inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& 
   }
   const __m512i a01 = _mm512_unpacklo_epi32(r[0], r[1]), b01 = _mm512_unpackhi_epi32(r[0], r[1]);
   const __m512i a23 = _mm512_unpacklo_epi32(r[2], r[3]), b23 = _mm512_unpackhi_epi32(r[2], r[3]);
-  p00 = v16u(_mm512_unpacklo_epi64(a01, a23));
-  p10 = v16u(_mm512_unpackhi_epi64(a01, a23));
-  p01 = v16u(_mm512_unpacklo_epi64(b01, b23));
-  p11 = v16u(_mm512_unpackhi_epi64(b01, b23));
+  p[0] = v16u(_mm512_unpacklo_epi64(a01, a23));
+  p[1] = v16u(_mm512_unpackhi_epi64(a01, a23));
+  p[2] = v16u(_mm512_unpacklo_epi64(b01, b23));
+  p[3] = v16u(_mm512_unpackhi_epi64(b01, b23));
 }
 
-// loadQuads16 of two textures of one size at the same indices: each lane's index read
-// back once for the four loads of both.
-inline void loadQuadsPair16(const uint32_t* texelsA, const uint32_t* texelsB, v16i a, int w, v16u (&pa)[4],
-                            v16u (&pb)[4]) {
+// Texel pairs a[l], a[l] + 1 (top row) and a[l] + w, a[l] + w + 1 (bottom row) of every
+// lane, in each of T textures of one size (p[t]: p00 p10 p01 p11 of texture t): scalar
+// 64-bit loads, each lane's index read back from memory once for all T textures, then
+// a transpose (loadQuads8 of sampler.cpp, 16 lanes). Faster than vpgatherdq on current
+// cores.
+template <int T>
+[[gnu::always_inline]] inline void loadQuadsOf(const uint32_t* const (&texels)[T], v16i a, int w,
+                                               v16u (&p)[T][4]) {
   alignas(64) int ix[16];
   std::memcpy(ix, &a, sizeof ix);
   asm volatile("" ::: "memory");  // reload the indices as integers, not by lane extraction
-  const uint32_t* belowA = texelsA + w;
-  const uint32_t* belowB = texelsB + w;
-  asm("" : "+r"(belowA), "+r"(belowB));
-  __m128i qa[16], qb[16];
-  const auto lane = [&](int l, size_t i) {
-    const __m128i topA = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texelsA + i));
-    const __m128i topB = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(texelsB + i));
-    qa[l] = _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(topA), reinterpret_cast<const double*>(belowA + i)));
-    qb[l] = _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(topB), reinterpret_cast<const double*>(belowB + i)));
-  };
-  forEachIndex(ix, lane);
-  const auto transpose = [](const __m128i (&q)[16], v16u (&p)[4]) {
-    __m512i r[4];
-    for (int l = 0; l < 4; ++l) {
-      const __m256i lo = _mm256_setr_m128i(q[l], q[l + 4]), hi = _mm256_setr_m128i(q[l + 8], q[l + 12]);
-      r[l] = _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+  // The bottom row from its own base register: both loads of a lane take its index as
+  // is, with no address arithmetic per lane (the compiler would otherwise add w to it).
+  const uint32_t* top[T];
+  const uint32_t* below[T];
+  for (int t = 0; t < T; ++t) {
+    top[t] = texels[t], below[t] = texels[t] + w;
+    asm("" : "+r"(below[t]));
+  }
+  __m128i q[T][16];
+  forEachIndex(ix, [&](int l, size_t i) {
+    for (int t = 0; t < T; ++t) {
+      const __m128i row = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(top[t] + i));
+      q[t][l] = _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(row), reinterpret_cast<const double*>(below[t] + i)));
     }
-    const __m512i a01 = _mm512_unpacklo_epi32(r[0], r[1]), b01 = _mm512_unpackhi_epi32(r[0], r[1]);
-    const __m512i a23 = _mm512_unpacklo_epi32(r[2], r[3]), b23 = _mm512_unpackhi_epi32(r[2], r[3]);
-    p[0] = v16u(_mm512_unpacklo_epi64(a01, a23));
-    p[1] = v16u(_mm512_unpackhi_epi64(a01, a23));
-    p[2] = v16u(_mm512_unpacklo_epi64(b01, b23));
-    p[3] = v16u(_mm512_unpackhi_epi64(b01, b23));
-  };
-  transpose(qa, pa);
-  transpose(qb, pb);
+  });
+  for (int t = 0; t < T; ++t) transposeQuads(q[t], p[t]);
+}
+
+inline void loadQuads16(const uint32_t* texels, v16i a, int w, v16u& p00, v16u& p10, v16u& p01,
+                        v16u& p11) {
+  const uint32_t* const one[1] = {texels};
+  v16u p[1][4];
+  loadQuadsOf<1>(one, a, w, p);
+  p00 = p[0][0], p10 = p[0][1], p01 = p[0][2], p11 = p[0][3];
 }
 
 inline v16f channel(v16u p, int shift) { return toFloat(v16i((p >> shift) & 255u)); }
@@ -642,14 +628,9 @@ template <TextureAddress AU, TextureAddress AV, int T, class Out>
   }
   v16u texels[kMaxSampleGroup][T][4];
   for (int i = 0; i < m; ++i) {
-    if constexpr (T == 2) {  // the levels have one size (above)
-      loadQuadsPair16(levels[i][0]->rgba8.data(), levels[i][1]->rgba8.data(), index[i], levels[i][0]->width,
-                      texels[i][0], texels[i][1]);
-      continue;
-    }
-    for (int t = 0; t < T; ++t)
-      loadQuads16(levels[i][t]->rgba8.data(), index[i], levels[i][t]->width, texels[i][t][0], texels[i][t][1],
-                  texels[i][t][2], texels[i][t][3]);
+    const uint32_t* data[T];
+    for (int t = 0; t < T; ++t) data[t] = levels[i][t]->rgba8.data();
+    loadQuadsOf<T>(data, index[i], levels[i][0]->width, texels[i]);  // the levels have one size (above)
   }
   uint32_t done = 0;
   for (int i = 0; i < m; ++i) {
