@@ -126,7 +126,7 @@ void bindPixelStage(const DrawPlan& plan, const DeviceState& st, PixelBindings& 
         d.prologue.clear();
         break;
       }
-      d.prologue.push_back({&*bound->prepared, l.input, l.file, l.index, l.channels});
+      d.prologue.push_back({&*bound->prepared, l.input, l.file, l.index, l.channels, l.input});
     }
     if (!d.prologue.empty()) d.pixelRest = &plan.texturePrologue->rest;
   }

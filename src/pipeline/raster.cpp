@@ -401,7 +401,7 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
       for (int g = 0; g < n; ++g) {
         exec::BatchRegisters& regs = w.group[size_t(g)].regs;
         auto& file = l.file == exec::RegFile::Output ? regs.outputs : regs.temps;
-        batches[g] = {regs.inputs[size_t(l.input)].c, file[size_t(l.index)].c, l.channels};
+        batches[g] = {regs.inputs[size_t(l.coordinates)].c, file[size_t(l.index)].c, l.channels};
       }
     };
     for (size_t k = 0; k < d.prologue.size(); ++k) {
@@ -585,6 +585,30 @@ void setCopies(const RasterDraw& draw, std::vector<InputTarget>& targets) {
     targets[i].sameAs = i < draw.inputCopies.size() ? draw.inputCopies[i] : -1;
 }
 
+// RasterDraw::PrologueLookup::coordinates: a lookup whose input register is interpolated
+// as a copy of an earlier lookup's in every component (or, in a component, neither is
+// interpolated: zero in both) reads that lookup's coordinates.
+void shareCoordinates(RasterDraw& draw) {
+  const auto rootOf = [&](int input, int component) {
+    for (size_t i = 0; i < draw.inputs.size(); ++i)
+      if (draw.inputs[i].input == input && draw.inputs[i].component == component)
+        return i < draw.inputCopies.size() && draw.inputCopies[i] >= 0 ? draw.inputCopies[i] : int(i);
+    return -1;
+  };
+  for (size_t k = 0; k < draw.prologue.size(); ++k) {
+    RasterDraw::PrologueLookup& l = draw.prologue[k];
+    l.coordinates = l.input;
+    for (size_t j = 0; j < k; ++j) {
+      bool same = true;
+      for (int c = 0; c < 4 && same; ++c) same = rootOf(l.input, c) == rootOf(draw.prologue[j].input, c);
+      if (same) {
+        l.coordinates = draw.prologue[j].coordinates;
+        break;
+      }
+    }
+  }
+}
+
 // The registers of a worker's group slots, as the worker's own for the whole program
 // (rasterize), prepared for the program without its lookups.
 void prepareGroup(const RasterDraw& draw, TileWorker& w, exec::ProgramBuildInfo* build) {
@@ -645,6 +669,7 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
   draw.groupedLookups =
       (draw.pixelRest || draw.passthroughSampler) && tileLoop != shadeTile<kAnyState, false, false>;
   const std::vector<LodSource> lodSources = draw.groupedLookups ? lodSourcesOf(draw) : std::vector<LodSource>{};
+  shareCoordinates(draw);
   for (auto& w : workers) {
     w.lodSources = &lodSources;
     w.provenRho.assign(lodSources.size(), ProvenRho{});

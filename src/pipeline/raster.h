@@ -141,6 +141,10 @@ struct RasterDraw {
     exec::RegFile file = exec::RegFile::Temp;  // the result's register
     int index = 0;
     uint8_t channels = 0xF;  // the result's components the rest of the program reads
+    // The input register the lookup reads its coordinates from: `input`, or an earlier
+    // lookup's whose interpolated values are the same in every component
+    // (RasterDraw::inputCopies; set by rasterize), so both read one array.
+    int coordinates = 0;
   };
   std::vector<PrologueLookup> prologue;
   const exec::Program* pixelRest = nullptr;

@@ -58,7 +58,9 @@ struct Frame : FrameContents {
 // Overlapping perspective triangles of many sizes (partial blocks, blocks of one
 // primitive in several tiles, texture coordinates beyond [0, 1]) on a 150x90 target
 // cleared to a colour; the last one half behind the others.
-Frame render(const Config& c, const char* ps) {
+// secondSet: 0 the vertices have one texture coordinate set; 1 a second one equal to
+// the first (interpolated once, RasterDraw::inputCopies); 2 a second one of other values.
+Frame render(const Config& c, const char* ps, int secondSet = 0) {
   DeviceOptions opt;
   opt.threads = 2;
   Device dev(CapsProfile{}, opt);
@@ -81,8 +83,7 @@ Frame render(const Config& c, const char* ps) {
   dev.setPixelShaderConstantF(1, k, 1);
   dev.setPixelShader(dev.createPixelShader(shader::assembleTokens(ps, "test.psh")));
   dev.resetStats();
-  drawTL(dev, PT_TRIANGLELIST,
-         {{-3.5f, 1.25f, 0.5f, 1.0f, 0xff808080, -0.7f, -0.3f},
+  const std::vector<TLVertex> vertices = {{-3.5f, 1.25f, 0.5f, 1.0f, 0xff808080, -0.7f, -0.3f},
           {150.0f, 4.0f, 0.25f, 0.2f, 0xc0ff8040, 3.1f, 0.2f},
           {5.0f, 92.0f, 0.75f, 0.6f, 0x4020ff10, 0.4f, 2.6f},
           {140.0f, 88.0f, 0.6f, 1.0f, 0xffffffff, 1.5f, 1.5f},
@@ -93,7 +94,24 @@ Frame render(const Config& c, const char* ps) {
           {22.0f, 29.0f, 0.3f, 1.0f, 0xff102030, 0.1f, 0.2f},
           {60.0f, 10.0f, 0.55f, 0.9f, 0xffa0b0c0, 0.0f, 0.0f},
           {130.0f, 80.0f, 0.35f, 0.4f, 0xffa0b0c0, 1.0f, 1.0f},
-          {61.0f, 80.0f, 0.45f, 0.7f, 0xffa0b0c0, 0.0f, 1.0f}});
+          {61.0f, 80.0f, 0.45f, 0.7f, 0xffa0b0c0, 0.0f, 1.0f}};
+  if (secondSet == 0) {
+    drawTL(dev, PT_TRIANGLELIST, vertices);
+  } else {
+    struct TwoSetVertex {  // D3DFVF_XYZRHW | D3DFVF_DIFFUSE | D3DFVF_TEX2
+      float x, y, z, rhw;
+      uint32_t diffuse;
+      float u0, v0, u1, v1;
+    };
+    std::vector<TwoSetVertex> two;
+    for (const TLVertex& v : vertices) {
+      const bool same = secondSet == 1;
+      two.push_back(
+          {v.x, v.y, v.z, v.rhw, v.diffuse, v.u, v.v, same ? v.u : 0.7f * v.v + 0.1f, same ? v.v : 1.3f * v.u});
+    }
+    dev.setFVF(FVF_XYZRHW | FVF_DIFFUSE | (2u << FVF_TEXCOUNT_SHIFT));
+    dev.drawPrimitiveUP(PT_TRIANGLELIST, uint32_t(two.size() / 3), two.data(), sizeof(TwoSetVertex));
+  }
   Frame f;
   static_cast<FrameContents&>(f) = readFrame(*target, *ds);
   f.groupedDraws = dev.stats().groupedLookupDraws;
@@ -122,6 +140,31 @@ TEST(GroupedLookups, SamePixelsAsTheLookupsInPlace) {
                 ++configs;
               }
   EXPECT_EQ(configs, 3 * 96);
+}
+
+// Two lookups at the coordinate sets t0 and t1: where the vertices give both the same
+// values the second lookup reads the first one's coordinates
+// (RasterDraw::PrologueLookup::coordinates), where they differ each reads its own.
+// Either way the pixels are those of the lookups kept in place.
+TEST(GroupedLookups, TwoCoordinateSetsSameOrDifferent) {
+  const char* grouped = "ps_2_0\ndcl t0\ndcl t1\ndcl v0\ndcl_2d s0\ndcl_2d s1\n"
+                        "texld r0, t0, s0\ntexld r1, t1, s1\nmul r0, r0, r1\nmad r0, r0, v0, c1\nmov oC0, r0\n";
+  const char* kept = "ps_2_0\ndef c0, 0, 0, 0, 0\ndcl t0\ndcl t1\ndcl v0\ndcl_2d s0\ndcl_2d s1\nmov r0, c0\n"
+                     "mov r1, c0\ntexld r0, t0, s0\ntexld r1, t1, s1\nmul r0, r0, r1\nmad r0, r0, v0, c1\nmov oC0, r0\n";
+  int configs = 0;
+  for (int secondSet : {1, 2})
+    for (uint32_t mip : {kNone, kPoint})
+      for (bool sameSize : {false, true}) {
+        const Config c{kLinear, mip, kWrap, true, false, sameSize};
+        SCOPED_TRACE(testing::Message() << "second set " << secondSet << " mip " << mip << " same size " << sameSize);
+        const Frame a = render(c, grouped, secondSet), b = render(c, kept, secondSet);
+        EXPECT_EQ(a.groupedDraws, 1u);
+        EXPECT_EQ(b.groupedDraws, 0u);
+        EXPECT_EQ(a.color, b.color);
+        EXPECT_EQ(a.depth, b.depth);
+        ++configs;
+      }
+  EXPECT_EQ(configs, 8);
 }
 
 }  // namespace
