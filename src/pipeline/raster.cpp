@@ -180,7 +180,8 @@ void interpolateInputsAvx2(const float* planes, const InputTarget* targets, size
     store8(w + 8 * h, wv[h]);
   }
   for (size_t i = 0; i < count; ++i, planes += 3) {
-    if (targets[i].sameAs >= 0) {
+    if (targets[i].sameAs != -1) {
+      if (targets[i].sameAs < 0) continue;  // kUnreadInput
       const float* from = targets[targets[i].sameAs].lanes;
       for (int h = 0; h < 2; ++h) store8(targets[i].lanes + 8 * h, load8(from + 8 * h));
       continue;
@@ -609,6 +610,29 @@ void shareCoordinates(RasterDraw& draw) {
   }
 }
 
+// Marks kUnreadInput the group slots' targets of input registers that neither the rest
+// of the program nor a lookup's coordinates read (RasterDraw::prologue: a lookup that
+// reads another register's copy of its coordinates leaves its own unread), unless a read
+// target copies from them.
+void skipUnreadInputs(const RasterDraw& draw, std::vector<InputTarget>& targets) {
+  if (!draw.pixelRest || draw.passthroughSampler) return;
+  std::vector<bool> read(kPixelInputCount, false);
+  for (const RasterDraw::PrologueLookup& l : draw.prologue) read[size_t(l.coordinates)] = true;
+  for (const exec::Instr& in : draw.pixelRest->code)
+    for (int s = 0; s < exec::sourceCount(in.op); ++s) {
+      const exec::Src& src = in.src[size_t(s)];
+      if (src.file != exec::RegFile::Input) continue;
+      if (src.rel != exec::RelMode::None || src.index >= kPixelInputCount) return;  // any of them
+      read[src.index] = true;
+    }
+  std::vector<bool> used(targets.size());
+  for (size_t i = 0; i < targets.size(); ++i) used[i] = read[size_t(draw.inputs[i].input)];
+  for (size_t i = 0; i < targets.size(); ++i)
+    if (used[i] && targets[i].sameAs >= 0) used[size_t(targets[i].sameAs)] = true;
+  for (size_t i = 0; i < targets.size(); ++i)
+    if (!used[i]) targets[i].sameAs = kUnreadInput;
+}
+
 // The registers of a worker's group slots, as the worker's own for the whole program
 // (rasterize), prepared for the program without its lookups.
 void prepareGroup(const RasterDraw& draw, TileWorker& w, exec::ProgramBuildInfo* build) {
@@ -625,6 +649,7 @@ void prepareGroup(const RasterDraw& draw, TileWorker& w, exec::ProgramBuildInfo*
     for (const InterpolatedInput& in : draw.inputs)
       slot.inputTargets.push_back({slot.regs.inputs[in.input].c[in.component], in.flat});
     setCopies(draw, slot.inputTargets);
+    skipUnreadInputs(draw, slot.inputTargets);
     slot.passTargets[0] = {slot.passU, false};
     slot.passTargets[1] = {slot.passV, false};
   }

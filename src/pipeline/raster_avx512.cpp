@@ -41,8 +41,8 @@ void interpolateInputsAvx512(const float* planes, const InputTarget* targets, si
   const v16f wv = unitW ? one : one / iw;
   store16(w, wv);
   for (size_t i = 0; i < count; ++i, planes += 3) {
-    if (targets[i].sameAs >= 0) {
-      store16(targets[i].lanes, load16(targets[targets[i].sameAs].lanes));
+    if (targets[i].sameAs != -1) {
+      if (targets[i].sameAs >= 0) store16(targets[i].lanes, load16(targets[targets[i].sameAs].lanes));
       continue;
     }
     v16f r = bcast16(planes[0]) + bcast16(planes[1]) * fx + bcast16(planes[2]) * fy;

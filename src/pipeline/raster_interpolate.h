@@ -14,9 +14,11 @@ struct InputTarget {
   float* lanes;
   bool flat;  // the plane holds the value itself, not value/w
   // An earlier target whose plane is this one's in every primitive of the draw
-  // (RasterDraw::inputCopies): its values are copied, not computed again. -1: none.
+  // (RasterDraw::inputCopies): its values are copied, not computed again. -1: none;
+  // kUnreadInput: nothing reads the input, it is not interpolated.
   int sameAs = -1;
 };
+constexpr int kUnreadInput = -2;
 
 // For a batch whose top-left pixel is (ox, oy) from the primitive's plane origin:
 // w[l] = 1 / invW[l], then for input i (planes: 3 floats each, base, d/dx, d/dy)
