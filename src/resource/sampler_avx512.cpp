@@ -577,6 +577,13 @@ struct GroupBatch {
   Out out;
   uint8_t channels = 0xF;  // SampleBatch::channels (float output only)
 };
+// A batch's u and v rows: a GroupBatch's, or a SampleBatch's coordinates.
+template <class Out>
+inline const float* coordinateU(const GroupBatch<Out>& b) { return b.u; }
+template <class Out>
+inline const float* coordinateV(const GroupBatch<Out>& b) { return b.v; }
+inline const float* coordinateU(const SampleBatch& b) { return b.coords[0]; }
+inline const float* coordinateV(const SampleBatch& b) { return b.coords[1]; }
 
 // Up to kMaxSampleGroup batches of LINEAR footprints sampled phase by phase rather than
 // one after the other: the classification of all, then their addresses and weights,
@@ -587,16 +594,16 @@ struct GroupBatch {
 // both, and that the plans classify alike). Returns the batches sampled (bit g: batch
 // g); the others (declined or mixed classification, POINT, a footprint whose 2x2
 // texels are not a block in memory, levels of different sizes) are left untouched.
-template <TextureAddress AU, TextureAddress AV, int T, class Out>
+template <TextureAddress AU, TextureAddress AV, int T, class Batch>
 [[gnu::noinline]] uint32_t sampleGroup16(const UniformPlan* const (&plans)[T], int count, const uint16_t* masks,
-                                         const GroupBatch<Out>* const (&batches)[T], ProvenRho proven) {
+                                         const Batch* const (&batches)[T], ProvenRho proven) {
   int slot[kMaxSampleGroup];  // the batches still in the group
   const SampleLevel* levels[kMaxSampleGroup][T];
   int n = 0;
   const int provenKey = keyOfRange(*plans[0], proven);
   for (int g = 0; g < count; ++g) {
     __m128i keys;
-    const int key = provenKey >= 0 ? provenKey : classifyBatch16(*plans[0], batches[0][g].u, batches[0][g].v, keys);
+    const int key = provenKey >= 0 ? provenKey : classifyBatch16(*plans[0], coordinateU(batches[0][g]), coordinateV(batches[0][g]), keys);
     if (key < 0 || !(key & 1)) continue;
     bool ok = true;
     for (int t = 0; t < T; ++t) {
@@ -617,8 +624,8 @@ template <TextureAddress AU, TextureAddress AV, int T, class Out>
     positionRange(AU, w, loU, hiU);
     positionRange(AV, h, loV, hiV);
     v16i x0, x1, y0, y1, fixedX, fixedY;
-    axis16<AU, true>(batches[0][g].u, float(w), loU, hiU, w, x0, x1, fixedX);
-    axis16<AV, true>(batches[0][g].v, float(h), loV, hiV, h, y0, y1, fixedY);
+    axis16<AU, true>(coordinateU(batches[0][g]), float(w), loU, hiU, w, x0, x1, fixedX);
+    axis16<AV, true>(coordinateV(batches[0][g]), float(h), loV, hiV, h, y0, y1, fixedY);
     if (!allDiffer(x0, x1, 1) || !allDiffer(y0, y1, 1)) continue;
     index[m] = y0 * w + x0;
     linearWeights(fixedX, fixedY, wx2[m], fy[m]);
@@ -648,18 +655,19 @@ template <TextureAddress AU, TextureAddress AV>
 void implicitGroup16(const void* context, int count, const uint16_t* laneMasks, const SampleBatch* batches,
                      ProvenRho proven) {
   const UniformPlan& plan = *static_cast<const UniformPlan*>(context);
-  GroupBatch<float (*)[kLanes]> group[kMaxSampleGroup];
-  for (int g = 0; g < count; ++g)
-    group[g] = {batches[g].coords[0], batches[g].coords[1], batches[g].coords[2], batches[g].out, batches[g].channels};
   const UniformPlan* const plans[1] = {&plan};
-  const GroupBatch<float (*)[kLanes]>* const sets[1] = {group};
+  const SampleBatch* const sets[1] = {batches};
   const uint32_t done = sampleGroup16<AU, AV, 1>(plans, count, laneMasks, sets, proven);
   for (int g = 0; g < count; ++g)
-    if (!(done >> g & 1)) implicit16<AU, AV>(&plan, group[g].u, group[g].v, group[g].w, laneMasks[g], group[g].out);
+    if (!(done >> g & 1)) {
+      const float(*c)[kLanes] = batches[g].coords;
+      implicit16<AU, AV>(&plan, c[0], c[1], c[2], laneMasks[g], batches[g].out);
+    }
 }
 
 // PreparedSampler::ImplicitPairGroupFn: sampleGroup16 of both plans for the batches
-// whose coordinates are the same for both, implicitPair16 for the others.
+// whose coordinates are the same for both (the batches as given where every one reads
+// a single array for both), implicitPair16 for the others.
 template <TextureAddress AU, TextureAddress AV>
 void implicitPairGroup16(const void* contextA, const void* contextB, int count, const uint16_t* laneMasks,
                          const SampleBatch* batchesA, const SampleBatch* batchesB, ProvenRho proven) {
@@ -671,19 +679,29 @@ void implicitPairGroup16(const void* contextA, const void* contextB, int count, 
   int n = 0;
   uint32_t done = 0;
   if (sameClassification(a, b)) {
-    for (int g = 0; g < count; ++g) {
-      if (!sameCoordinates(batchesA[g].coords, batchesB[g].coords)) continue;
-      const float(*c)[kLanes] = batchesA[g].coords;
-      groupA[n] = {c[0], c[1], c[2], batchesA[g].out, batchesA[g].channels};
-      groupB[n] = {c[0], c[1], c[2], batchesB[g].out, batchesB[g].channels};
-      masks[n] = laneMasks[g];
-      at[n++] = g;
+    bool shared = true;
+    for (int g = 0; g < count && shared; ++g) shared = batchesA[g].coords == batchesB[g].coords;
+    if (shared) {
+      // Both lookups read one coordinate array (RasterDraw's shared coordinates): the
+      // batches as they are.
+      const UniformPlan* const plans[2] = {&a, &b};
+      const SampleBatch* const sets[2] = {batchesA, batchesB};
+      done = sampleGroup16<AU, AV, 2>(plans, count, laneMasks, sets, proven);
+    } else {
+      for (int g = 0; g < count; ++g) {
+        if (!sameCoordinates(batchesA[g].coords, batchesB[g].coords)) continue;
+        const float(*c)[kLanes] = batchesA[g].coords;
+        groupA[n] = {c[0], c[1], c[2], batchesA[g].out, batchesA[g].channels};
+        groupB[n] = {c[0], c[1], c[2], batchesB[g].out, batchesB[g].channels};
+        masks[n] = laneMasks[g];
+        at[n++] = g;
+      }
+      const UniformPlan* const plans[2] = {&a, &b};
+      const GroupBatch<float (*)[kLanes]>* const sets[2] = {groupA, groupB};
+      const uint32_t sampled = sampleGroup16<AU, AV, 2>(plans, n, masks, sets, proven);
+      for (int i = 0; i < n; ++i)
+        if (sampled >> i & 1) done |= 1u << at[i];
     }
-    const UniformPlan* const plans[2] = {&a, &b};
-    const GroupBatch<float (*)[kLanes]>* const sets[2] = {groupA, groupB};
-    const uint32_t sampled = sampleGroup16<AU, AV, 2>(plans, n, masks, sets, proven);
-    for (int i = 0; i < n; ++i)
-      if (sampled >> i & 1) done |= 1u << at[i];
   }
   for (int g = 0; g < count; ++g)
     if (!(done >> g & 1))
