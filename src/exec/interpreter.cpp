@@ -1126,6 +1126,22 @@ ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRe
   return info;
 }
 
+ProgramRunner runnerFor(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  ProgramRunner r;
+  const PreparedProgram* pp = regs.prepared.get();
+  const bool prepared = pp && pp->program == &program && pp->code == program.code.data() &&
+                        pp->size == program.code.size();
+  if (!prepared || !pp->jit || program.flowControl || pp->frame.regs != &regs) return r;
+  const detail::JitProgram& jit = *pp->jit;
+  if (jit.constantsRead > 0 && (ctx.constantCount < jit.constantsRead || !ctx.constants)) return r;
+  // What runJit sets on each call.
+  pp->frame.ctx = &ctx;
+  pp->frame.constants = ctx.constants;
+  r.fn_ = jit.run;
+  r.frame_ = &pp->frame;
+  return r;
+}
+
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
   const PreparedProgram* pp = regs.prepared.get();
   const bool prepared = pp && pp->program == &program && pp->code == program.code.data() &&

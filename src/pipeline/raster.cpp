@@ -80,6 +80,7 @@ alignas(64) constexpr float kLaneYf[N] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2,
 // One batch of a group (shadeGroup): its registers, depth and pass-through colors.
 struct GroupSlot {
   exec::BatchRegisters regs;  // prepared for RasterDraw::pixelRest
+  exec::ProgramRunner runRest;  // pixelRest on regs, where it is native code
   std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations in regs
   alignas(64) float z[N];
   alignas(64) float invW[N];
@@ -99,6 +100,7 @@ struct LodSource {
 };
 
 struct TileWorker {
+  exec::ProgramRunner runProgram;  // RasterDraw::pixelProgram on regs, where it is native code
   exec::BatchRegisters regs;
   std::vector<InputTarget> inputTargets;  // RasterDraw::inputs' destinations, in order
   InterpolateInputsFn interpolateInputs = nullptr;
@@ -325,7 +327,8 @@ void shadeBatch(const RasterDraw& d, const Primitive& p, int bx, int by, uint16_
       for (int c = 0; c < 4; ++c) std::fill_n(f.c[c], N, face);
     }
     w.regs.laneMask = mask;
-    exec::execute(*d.pixelProgram, d.execContext, w.regs);
+    if (w.runProgram) w.runProgram();
+    else exec::execute(*d.pixelProgram, d.execContext, w.regs);
     mask &= w.regs.laneMask;
     if (any && d.shaderDepth) {
       // The shader's depth replaces the interpolated one, clamped to [0,1].
@@ -426,7 +429,8 @@ void shadeGroup(const RasterDraw& d, const Primitive& p, const CoveredBlock* blo
     for (int g = 0; g < n; ++g) {
       GroupSlot& slot = w.group[size_t(g)];
       slot.regs.laneMask = items[g].mask;
-      exec::execute(*d.pixelRest, d.execContext, slot.regs);
+      if (slot.runRest) slot.runRest();
+      else exec::execute(*d.pixelRest, d.execContext, slot.regs);
     }
   for (int g = 0; g < n; ++g) {
     GroupSlot& slot = w.group[size_t(g)];
@@ -644,6 +648,7 @@ void prepareGroup(const RasterDraw& draw, TileWorker& w, exec::ProgramBuildInfo*
     if (draw.pixelRest) {
       const exec::ProgramBuildInfo info = exec::prepare(program, draw.execContext, slot.regs, draw.prepareOptions);
       if (build && &slot == &w.group[0]) *build = info;
+      slot.runRest = exec::runnerFor(program, draw.execContext, slot.regs);
     }
     slot.inputTargets.clear();
     for (const InterpolatedInput& in : draw.inputs)
@@ -678,6 +683,7 @@ void rasterize(RasterDraw& draw, ThreadPool& pool) {
     const exec::ProgramBuildInfo info =
         exec::prepare(*draw.pixelProgram, draw.execContext, w.regs, draw.prepareOptions);
     if (draw.pixelBuild && &w == &workers[0]) *draw.pixelBuild = info;
+    w.runProgram = exec::runnerFor(*draw.pixelProgram, draw.execContext, w.regs);
     w.interpolateInputs = chooseInterpolateInputs();
     w.coverBlocks = chooseCoverBlocks();
     w.lazyFill = lazyFillFor(draw);

@@ -92,9 +92,11 @@ uint32_t runVertexStage(const DrawPlan& plan, const DeviceState& st, ThreadPool&
   std::atomic<uint32_t> vertexBoundStops{0};
   vctx.boundStops = &vertexBoundStops;
   // The program is prepared for this draw's constants (once per worker's registers).
+  std::vector<exec::ProgramRunner> runners(vregs.size());
   for (size_t i = 0; i < vregs.size(); ++i) {
     const exec::ProgramBuildInfo info = exec::prepare(vprog, vctx, vregs[i], options);
     if (i == 0) build = info;
+    runners[i] = exec::runnerFor(vprog, vctx, vregs[i]);
   }
   static_assert(sizeof(Vec4) == 4 * sizeof(float), "Vec4 is x, y, z, w and nothing else");
   pool.parallelFor(batches, [&](size_t b, int thread) {
@@ -105,7 +107,8 @@ uint32_t runVertexStage(const DrawPlan& plan, const DeviceState& st, ThreadPool&
     fetchVertices(plan.fetch, streams, first, n, r);
     for (auto& o : r.outputs) std::memset(&o, 0, sizeof(o));
     r.laneMask = 0xffff;
-    exec::execute(vprog, vctx, r);
+    if (runners[size_t(thread)]) runners[size_t(thread)]();
+    else exec::execute(vprog, vctx, r);
     ShadedVertex* out = verts.data() + (first - lo);
     // The outputs from SoA to the vertices' Vec4s, four lanes at a time (a 4x4 transpose).
     for (int o = 0; o < kVaryingCount; ++o) {

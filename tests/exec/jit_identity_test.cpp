@@ -42,7 +42,7 @@ TEST(JitIdentity, EveryShaderFileThatLowers) {
   hardware.precision = Precision::Hardware;
   hardware.pixelShader1xMaxValue = 8.0f;
   const Lowering lowerings[] = {{"exact", {}}, {"hardware", hardware}};
-  int files = 0, compiled = 0, interpreted = 0;
+  int files = 0, compiled = 0, interpreted = 0, runners = 0;
   CompileTimes times;
   for (const fs::path& path : shaderFiles()) {
     std::ifstream f(path);
@@ -67,6 +67,7 @@ TEST(JitIdentity, EveryShaderFileThatLowers) {
         SCOPED_TRACE(path.string() + " (" + lowering.name + ", " + isaName(isa) + ")");
         EXPECT_EQ(o.mismatch, "");
         (o.backend == "interpreter" ? interpreted : compiled)++;
+        runners += o.runner;
         times.add(o);
       }
     }
@@ -76,6 +77,9 @@ TEST(JitIdentity, EveryShaderFileThatLowers) {
   std::printf("shader files: %s\n", times.summary().c_str());
   EXPECT_GT(files, 60);
   EXPECT_EQ(interpreted, 0);
+  // The programs without flow control run through runnerFor's runner, as the rasterizer
+  // runs them (ps_1_x and most others).
+  EXPECT_GT(runners, compiled / 2);
 }
 
 // Random straight-line programs: every op, source file, swizzle, modifier, write
@@ -188,6 +192,8 @@ TEST(JitIdentity, RandomPrograms) {
       // Every third program with samplers 1 and 2 and up unbound.
       const Outcome o = compare(p, isa, uint32_t(n), {}, 0, n % 3 == 0 ? 1 : kSamplerCount);
       ASSERT_NE(o.backend, "interpreter");
+      // Without flow control, with every constant set: a run is one call (runnerFor).
+      ASSERT_TRUE(o.runner) << "program " << n;
       ASSERT_EQ(o.mismatch, "") << "program " << n << " (" << isaName(isa) << ")\n" << listProgram(p);
     }
   }
@@ -436,6 +442,7 @@ TEST(JitIdentity, RandomProgramsWithFlowControl) {
     for (auto isa : isas) {
       const Outcome o = compare(p, isa, uint32_t(n), {}, 0, n % 3 == 0 ? 1 : kSamplerCount);
       ASSERT_NE(o.backend, "interpreter");
+      ASSERT_EQ(o.runner, !p.flowControl) << "program " << n;  // flow control runs through execute()
       ASSERT_EQ(o.mismatch, "") << "program " << n << " (" << isaName(isa) << ")\n" << listProgram(p);
     }
   }

@@ -85,6 +85,28 @@ constexpr long kMaxExecutedInstructions = 65535;
 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs);
 
+namespace detail {
+struct JitFrame;
+}
+// execute() of a prepared program on the registers it was prepared with, for many
+// batches of one draw: what execute() checks on each call is checked once, and a run is
+// one call of the native code. Empty (false) where execute() has more to do: no native
+// code, flow control, constants the API did not set.
+class ProgramRunner {
+ public:
+  ProgramRunner() = default;
+  explicit operator bool() const { return fn_ != nullptr; }
+  void operator()() const { fn_(frame_); }
+
+ private:
+  friend ProgramRunner runnerFor(const Program&, const ExecContext&, BatchRegisters&);
+  void (*fn_)(detail::JitFrame*) = nullptr;
+  detail::JitFrame* frame_ = nullptr;
+};
+// The context and registers must outlive the runner and stay as they are (the lanes'
+// values excepted); the runner runs the program as execute(program, ctx, regs).
+ProgramRunner runnerFor(const Program& program, const ExecContext& ctx, BatchRegisters& regs);
+
 // How prepare() may run a program.
 struct PrepareOptions {
   // Native code when the CPU allows it (AVX-512 or AVX2); false: the interpreter.
