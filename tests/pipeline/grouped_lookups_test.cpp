@@ -118,6 +118,15 @@ Frame render(const Config& c, const char* ps, int secondSet = 0) {
   return f;
 }
 
+// The grouped draw made its lookups for groups, the other in place, with the same pixels
+// and depths.
+void expectSameFrames(const Frame& grouped, const Frame& kept) {
+  EXPECT_EQ(grouped.groupedDraws, 1u);
+  EXPECT_EQ(kept.groupedDraws, 0u);
+  EXPECT_EQ(grouped.color, kept.color);
+  EXPECT_EQ(grouped.depth, kept.depth);
+}
+
 TEST(GroupedLookups, SamePixelsAsTheLookupsInPlace) {
   int configs = 0;
   for (const ShaderPair& shaders : kShaders)
@@ -131,12 +140,7 @@ TEST(GroupedLookups, SamePixelsAsTheLookupsInPlace) {
                 SCOPED_TRACE(testing::Message() << shaders.name << ": filter " << filter << " mip " << mip
                                                 << " address " << address << " depth " << depth << " blend "
                                                 << blend << " same size " << sameSize);
-                const Frame grouped = render(c, shaders.grouped);
-                const Frame kept = render(c, shaders.kept);
-                EXPECT_EQ(grouped.groupedDraws, 1u);
-                EXPECT_EQ(kept.groupedDraws, 0u);
-                EXPECT_EQ(grouped.color, kept.color);
-                EXPECT_EQ(grouped.depth, kept.depth);
+                expectSameFrames(render(c, shaders.grouped), render(c, shaders.kept));
                 ++configs;
               }
   EXPECT_EQ(configs, 3 * 96);
@@ -157,11 +161,7 @@ TEST(GroupedLookups, TwoCoordinateSetsSameOrDifferent) {
       for (bool sameSize : {false, true}) {
         const Config c{kLinear, mip, kWrap, true, false, sameSize};
         SCOPED_TRACE(testing::Message() << "second set " << secondSet << " mip " << mip << " same size " << sameSize);
-        const Frame a = render(c, grouped, secondSet), b = render(c, kept, secondSet);
-        EXPECT_EQ(a.groupedDraws, 1u);
-        EXPECT_EQ(b.groupedDraws, 0u);
-        EXPECT_EQ(a.color, b.color);
-        EXPECT_EQ(a.depth, b.depth);
+        expectSameFrames(render(c, grouped, secondSet), render(c, kept, secondSet));
         ++configs;
       }
   EXPECT_EQ(configs, 8);
