@@ -146,6 +146,25 @@ TEST(TexturePrologue, ChannelsTheRestReads) {
   EXPECT_EQ(p->lookups[0].channels, 0x1);
 }
 
+// IR built by hand (the lowering swizzles dp3's sources to .xyzx, which hides its own
+// reads): dp3 reads x, y, z; dp4 and the ops read through their swizzles; a register
+// written whole stops the scan; relative addressing and flow control read everything.
+TEST(ChannelsRead, FromTheOpsReads) {
+  Program p;
+  p.tempCount = 4;
+  p.emit(Op::Dp3, dst(RegFile::Temp, 0), reg(RegFile::Temp, 1), reg(RegFile::Const, 0));
+  EXPECT_EQ(channelsRead(p, 1), 0x7);
+  p.emit(Op::Mul, dst(RegFile::Temp, 0, 0x8), reg(RegFile::Temp, 2, swz(1, 1, 1, 0)), reg(RegFile::Const, 0));
+  EXPECT_EQ(channelsRead(p, 2), 0x1);  // the mask w reads the swizzle's fourth: x
+  p.emit(Op::Mov, dst(RegFile::Temp, 1), reg(RegFile::Const, 1));
+  p.emit(Op::Dp4, dst(RegFile::Temp, 0), reg(RegFile::Temp, 1), reg(RegFile::Const, 0));
+  EXPECT_EQ(channelsRead(p, 1), 0x7);  // the dp4 reads the mov's value
+  EXPECT_EQ(channelsRead(p, 3), 0x0);
+  Program flow = p;
+  flow.flowControl = true;
+  EXPECT_EQ(channelsRead(flow, 3), 0xF);
+}
+
 TEST(ChannelsRead, WholeWhereNotPlain) {
   // dp4 reads all four; a result nobody reads has none.
   Program p = lowerShader(shader::decode(shader::assembleTokens(
