@@ -1126,14 +1126,20 @@ ProgramBuildInfo prepare(const Program& program, const ExecContext& ctx, BatchRe
   return info;
 }
 
-ProgramRunner runnerFor(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
-  ProgramRunner r;
+// What prepare() made of `program` in `regs`, if it still is that program's.
+static const PreparedProgram* preparedFor(const Program& program, const BatchRegisters& regs) {
   const PreparedProgram* pp = regs.prepared.get();
   const bool prepared = pp && pp->program == &program && pp->code == program.code.data() &&
                         pp->size == program.code.size();
-  if (!prepared || !pp->jit || program.flowControl || pp->frame.regs != &regs) return r;
+  return prepared ? pp : nullptr;
+}
+
+ProgramRunner runnerFor(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
+  ProgramRunner r;
+  const PreparedProgram* pp = preparedFor(program, regs);
+  if (!pp || !pp->jit || program.flowControl || pp->frame.regs != &regs) return r;
   const detail::JitProgram& jit = *pp->jit;
-  if (jit.constantsRead > 0 && (ctx.constantCount < jit.constantsRead || !ctx.constants)) return r;
+  if (detail::constantsToPad(jit, ctx)) return r;
   // What runJit sets on each call.
   pp->frame.ctx = &ctx;
   pp->frame.constants = ctx.constants;
@@ -1143,9 +1149,8 @@ ProgramRunner runnerFor(const Program& program, const ExecContext& ctx, BatchReg
 }
 
 void execute(const Program& program, const ExecContext& ctx, BatchRegisters& regs) {
-  const PreparedProgram* pp = regs.prepared.get();
-  const bool prepared = pp && pp->program == &program && pp->code == program.code.data() &&
-                        pp->size == program.code.size();
+  const PreparedProgram* pp = preparedFor(program, regs);
+  const bool prepared = pp != nullptr;
   if (prepared && pp->jit) {
     detail::JitFrame copy;
     detail::JitFrame* frame = &pp->frame;

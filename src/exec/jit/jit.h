@@ -61,6 +61,11 @@ std::unique_ptr<JitProgram> compileProgram(const Program& program, JitIsa isa);
 JitFrame jitFrame(const Program& program, BatchRegisters& regs);
 // Runs compiled code (the program's, or one of its blocks) on one batch.
 void runJit(const JitProgram& jit, JitFunction fn, JitFrame& frame, const ExecContext& ctx);
+// Whether the code reads constants the API did not set (runJit reads them as zero from
+// a padded copy).
+inline bool constantsToPad(const JitProgram& jit, const ExecContext& ctx) {
+  return jit.constantsRead > 0 && (ctx.constantCount < jit.constantsRead || !ctx.constants);
+}
 
 // The interpreter's routines the generated code and the code generator share
 // (interpreter.cpp), so results stay bit-identical.

@@ -139,7 +139,7 @@ JitFrame jitFrame(const Program& program, BatchRegisters& regs) {
 void runJit(const JitProgram& jit, JitFunction fn, JitFrame& f, const ExecContext& ctx) {
   f.ctx = &ctx;
   f.constants = ctx.constants;
-  if (jit.constantsRead > 0 && (ctx.constantCount < jit.constantsRead || !ctx.constants)) {
+  if (constantsToPad(jit, ctx)) {
     // Constants the API did not set read as zero, as in the interpreter.
     thread_local std::vector<Vec4> padded;
     padded.assign(size_t(jit.constantsRead), Vec4(0, 0, 0, 0));
