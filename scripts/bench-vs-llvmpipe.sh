@@ -58,6 +58,12 @@ for round in $(seq 1 "$ROUNDS"); do
   done
 done
 [ -t 2 ] && printf '\r%60s\r' '' >&2
+# The machine the ratios belong to (they differ between CPU generations: AVX2 or
+# AVX-512, one or two 256-bit halves per 512-bit operation), and refx's own notes on it.
+awk -F': *' -v ncpu="$(nproc)" '/^model name/ {m = $2} /^cpu family/ {f = $2} /^model\t/ {n = $2}
+             END {printf "# cpu: %s (family %s, model %s), %s logical cpus\n", m, f, n, ncpu}' \
+  /proc/cpuinfo 2>/dev/null || true
+./build/refx bench --workload texture --geom quad --threads 1 --size 64x64 --frames 1 | grep '^#' || true
 python3 - "$RAW" "$PAIRS" <<'PY'
 import sys, statistics
 from collections import defaultdict
