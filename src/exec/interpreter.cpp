@@ -412,9 +412,7 @@ void executeInstr(const Instr& in, const Program& program, const ExecContext& ct
         });
         break;
       case Op::Pow:
-        each([&](int c, float* r) {
-          for (int l = 0; l < N; ++l) r[l] = detail::powLane(s[0].c[c][l], s[1].c[c][l]);
-        });
+        each([&](int c, float* r) { detail::powLanes(s[0].c[c], s[1].c[c], nullptr, r, 0); });
         break;
       case Op::Lrp:
         each3([](v8f a, v8f b, v8f d) { return a * (b - d) + d; });

@@ -1,6 +1,8 @@
 #include "exec/lane_math.h"
 
+#include "exec/pow_lanes.h"
 #include "refx/core/batch.h"
+#include "refx/core/cpu_features.h"
 
 namespace refx::exec::detail {
 
@@ -16,8 +18,11 @@ void log2Lanes(const float* a, const float*, const float*, float* r, uint32_t) {
   for (int l = 0; l < N; ++l) r[l] = log2Lane(a[l]);
 }
 
+void powLanesAvx2(const float* a, const float* b, float* r) { pow_lanes::powLanes<4>(a, b, r, N); }
+
 void powLanes(const float* a, const float* b, const float*, float* r, uint32_t) {
-  for (int l = 0; l < N; ++l) r[l] = powLane(a[l], b[l]);
+  if (activeIsa() == CpuIsa::Avx512) powLanesAvx512(a, b, r);
+  else powLanesAvx2(a, b, r);
 }
 
 void litLanes(const float* x, const float* y, const float* w, float* r, uint32_t mask) {

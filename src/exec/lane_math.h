@@ -11,8 +11,6 @@ namespace refx::exec::detail {
 inline float exp2Lane(float x) { return std::exp2(x); }
 // D3D log: log2 |x| (log(0) = -inf).
 inline float log2Lane(float x) { return std::log2(std::fabs(x)); }
-// D3D pow: |x|^y (pow(0, 0) = 1).
-inline float powLane(float x, float y) { return std::pow(std::fabs(x), y); }
 
 // Component c of D3D lit of (x = N.L, y = N.H, w = power).
 inline float litLane(int c, float x, float y, float w) {
@@ -36,7 +34,16 @@ inline float sinCosLane(int c, float v) { return c == 0 ? std::cos(v) : std::sin
 using LaneHelper = void (*)(const float* a, const float* b, const float* c, float* r, uint32_t mask);
 void exp2Lanes(const float* a, const float* b, const float* c, float* r, uint32_t mask);
 void log2Lanes(const float* a, const float* b, const float* c, float* r, uint32_t mask);
+// D3D pow, |a|^b (pow(0, 0) = 1), of the 16 lanes: exp2(b · log2|a|) evaluated in
+// double precision and rounded once to float, so nearly always the correctly rounded
+// power (pow_lanes.h). The interpreter calls this too, so native code and interpreter
+// share one definition. C's special cases: pow(x, ±0) = 1 and pow(1, y) = 1 even for
+// NaN, pow(+0, y < 0) = +inf, |a|^±inf by whether |a| is above or below 1; other NaNs
+// propagate.
 void powLanes(const float* a, const float* b, const float* c, float* r, uint32_t mask);
+// powLanes at each width (pow_lanes.h): the same bits; Avx512 only where the CPU has it.
+void powLanesAvx2(const float* a, const float* b, float* r);
+void powLanesAvx512(const float* a, const float* b, float* r);
 void litLanes(const float* x, const float* y, const float* w, float* r, uint32_t mask);
 void expPLanes(const float* v, const float* b, const float* c, float* r, uint32_t mask);
 void sinCosLanes(const float* v, const float* b, const float* c, float* r, uint32_t mask);
