@@ -6,7 +6,7 @@
 // |x|^y = 2^(y · log2|x|), evaluated in double precision and rounded once to float:
 // the evaluation's relative error is about 2^-46, so the result is the correctly
 // rounded power except where the exact one lies that close to a midpoint between two
-// floats. Only the basic operations are used (no libm, no fused multiply-add), with
+// floats. Only the basic operations and fused multiply-adds are used (no libm), with
 // AVX2's lack of 64-bit integer ⇄ double conversions worked around by magic numbers.
 #pragma once
 #include <cmath>
@@ -44,6 +44,15 @@ inline typename Vectors<W>::F toFloat(typename Vectors<W>::D x) {
   else return typename Vectors<W>::F(_mm512_maskz_cvtpd_ps(0xff, __m512d(x)));
 }
 
+// a · b + c rounded once (x86-64-v3 has FMA): the same result at either width.
+template <class D>
+inline D fma(D a, D b, D c) {
+  if constexpr (sizeof(D) == 32) return D(_mm256_fmadd_pd(__m256d(a), __m256d(b), __m256d(c)));
+  else return D(_mm512_fmadd_pd(__m512d(a), __m512d(b), __m512d(c)));
+}
+template <class D>
+inline D fma(D a, double b, double c) { return fma(a, D{} + b, D{} + c); }
+
 // The series below are summed by Estrin's scheme, written out (loops over coefficient
 // arrays stay loops): pairs of terms, then pairs of pairs with x², x⁴, x⁸, so that the
 // products run side by side rather than as one chain of dependent multiply-adds
@@ -54,21 +63,21 @@ inline typename Vectors<W>::F toFloat(typename Vectors<W>::D x) {
 template <class D>
 inline D logSeries(D z) {
   const D z2 = z * z, z4 = z2 * z2, z8 = z4 * z4;
-  const D p01 = z * (1.0 / 3) + 1.0, p23 = z * (1.0 / 7) + 1.0 / 5, p45 = z * (1.0 / 11) + 1.0 / 9,
-          p67 = z * (1.0 / 15) + 1.0 / 13;
-  const D p03 = p23 * z2 + p01, p47 = p67 * z2 + p45;
-  return (z8 * (1.0 / 17)) + (p47 * z4 + p03);
+  const D p01 = fma(z, 1.0 / 3, 1.0), p23 = fma(z, 1.0 / 7, 1.0 / 5), p45 = fma(z, 1.0 / 11, 1.0 / 9),
+          p67 = fma(z, 1.0 / 15, 1.0 / 13);
+  const D p03 = fma(p23, z2, p01), p47 = fma(p67, z2, p45);
+  return fma(z8, D{} + 1.0 / 17, fma(p47, z4, p03));
 }
 
 // e^g = Σ g^k/k!, k = 0 … 11, for |g| ≤ 0.347 (the next term is below 2^-47).
 template <class D>
 inline D expSeries(D g) {
   const D g2 = g * g, g4 = g2 * g2, g8 = g4 * g4;
-  const D p01 = g + 1.0, p23 = g * (1.0 / 6) + 1.0 / 2, p45 = g * (1.0 / 120) + 1.0 / 24,
-          p67 = g * (1.0 / 5040) + 1.0 / 720, p89 = g * (1.0 / 362880) + 1.0 / 40320,
-          pab = g * (1.0 / 39916800) + 1.0 / 3628800;
-  const D p03 = p23 * g2 + p01, p47 = p67 * g2 + p45, p8b = pab * g2 + p89;
-  return (p8b * g8) + (p47 * g4 + p03);
+  const D p01 = g + 1.0, p23 = fma(g, 1.0 / 6, 1.0 / 2), p45 = fma(g, 1.0 / 120, 1.0 / 24),
+          p67 = fma(g, 1.0 / 5040, 1.0 / 720), p89 = fma(g, 1.0 / 362880, 1.0 / 40320),
+          pab = fma(g, 1.0 / 39916800, 1.0 / 3628800);
+  const D p03 = fma(p23, g2, p01), p47 = fma(p67, g2, p45), p8b = fma(pab, g2, p89);
+  return fma(p8b, g8, fma(p47, g4, p03));
 }
 
 // x^y for finite x > 0 and finite y (other lanes get some value).
