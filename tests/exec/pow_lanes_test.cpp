@@ -100,6 +100,30 @@ TEST(PowLanes, SpecialCasesAsC) {
   }
 }
 
+// One whole exponent 2, 3 or 4 for every lane (HLSL's pow(x, 3)) is computed as
+// products: still the correctly rounded power, exact midpoints rounded to even.
+TEST(PowLanes, WholeExponentsOfAllLanes) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> base(-2.0f, 2.0f);
+  float x[N], y[N], r[N];
+  for (int batch = 0; batch < 6000; ++batch) {
+    const float n = float(2 + batch % 3);
+    for (int l = 0; l < N; ++l) x[l] = base(rng), y[l] = n;
+    detail::powLanes(x, y, nullptr, r, 0);
+    for (int l = 0; l < N; ++l)
+      ASSERT_TRUE(sameBits(r[l], roundedPower(x[l], n))) << std::hexfloat << "pow(" << x[l] << ", " << n << ") = " << r[l];
+  }
+  // 4097² = 16785409 = 2^24 + 8193 lies halfway between the floats 16785408 and
+  // 16785410: ties to even give 16785408 (significand 8392704, even).
+  for (int l = 0; l < N; ++l) x[l] = 4097.0f, y[l] = 2.0f;
+  x[1] = -0.0f, x[2] = INFINITY, x[3] = 1e30f;  // 0, inf, and 1e60 overflowing to inf
+  detail::powLanes(x, y, nullptr, r, 0);
+  EXPECT_EQ(r[0], 16785408.0f);
+  EXPECT_TRUE(sameBits(r[1], 0.0f));
+  EXPECT_EQ(r[2], INFINITY);
+  EXPECT_EQ(r[3], INFINITY);
+}
+
 // A batch without a lane for the general evaluation: saturated dot products of 0
 // raised to powers, and 1 to NaN.
 TEST(PowLanes, BatchOfSpecialLanesOnly) {
