@@ -32,23 +32,41 @@ struct Vectors {
 // float ⇄ double lanes by the instructions made for it (the compiler's generic vector
 // conversion goes through memory in halves). AVX-512's in their zero-masked form with
 // every lane set, the same instruction: GCC 12 warns of the plain form's undefined
-// source operand.
+// source operand. A build without AVX (the fuzz targets') takes the generic forms:
+// the same values.
 template <int W>
 inline typename Vectors<W>::D toDouble(typename Vectors<W>::F x) {
-  if constexpr (W == 4) return typename Vectors<W>::D(_mm256_cvtps_pd(__m128(x)));
-  else return typename Vectors<W>::D(_mm512_maskz_cvtps_pd(0xff, __m256(x)));
+  if constexpr (W == 8) return typename Vectors<W>::D(_mm512_maskz_cvtps_pd(0xff, __m256(x)));
+#if defined(__AVX__)
+  else return typename Vectors<W>::D(_mm256_cvtps_pd(__m128(x)));
+#else
+  else return __builtin_convertvector(x, typename Vectors<W>::D);
+#endif
 }
 template <int W>
 inline typename Vectors<W>::F toFloat(typename Vectors<W>::D x) {
-  if constexpr (W == 4) return typename Vectors<W>::F(_mm256_cvtpd_ps(__m256d(x)));
-  else return typename Vectors<W>::F(_mm512_maskz_cvtpd_ps(0xff, __m512d(x)));
+  if constexpr (W == 8) return typename Vectors<W>::F(_mm512_maskz_cvtpd_ps(0xff, __m512d(x)));
+#if defined(__AVX__)
+  else return typename Vectors<W>::F(_mm256_cvtpd_ps(__m256d(x)));
+#else
+  else return __builtin_convertvector(x, typename Vectors<W>::F);
+#endif
 }
 
-// a · b + c rounded once (x86-64-v3 has FMA): the same result at either width.
+// a · b + c rounded once: the same result at either width, and from std::fma in a
+// build without FMA.
 template <class D>
 inline D fma(D a, D b, D c) {
-  if constexpr (sizeof(D) == 32) return D(_mm256_fmadd_pd(__m256d(a), __m256d(b), __m256d(c)));
-  else return D(_mm512_fmadd_pd(__m512d(a), __m512d(b), __m512d(c)));
+  if constexpr (sizeof(D) == 64) return D(_mm512_fmadd_pd(__m512d(a), __m512d(b), __m512d(c)));
+#if defined(__FMA__)
+  else return D(_mm256_fmadd_pd(__m256d(a), __m256d(b), __m256d(c)));
+#else
+  else {
+    D r;
+    for (size_t i = 0; i < sizeof(D) / sizeof(double); ++i) r[i] = std::fma(a[i], b[i], c[i]);
+    return r;
+  }
+#endif
 }
 template <class D>
 inline D fma(D a, double b, double c) { return fma(a, D{} + b, D{} + c); }
@@ -112,7 +130,7 @@ inline typename Vectors<W>::F powFinite(typename Vectors<W>::F x, typename Vecto
   const D n = shifted - 6755399441055744.0;
   const D f = huge ? D{} : (ye - n) + yl;  // |f| ≤ ½
   // 2^n · e^(f ln 2), |f ln 2| ≤ 0.347 (expSeries).
-  const L scale = (L(shifted) << 52) + (1023LL << 52);
+  const U scale = (U(shifted) << 52) + (1023ULL << 52);
   return toFloat<W>(expSeries(f * 0.6931471805599453) * D(scale));
 }
 
@@ -139,8 +157,8 @@ inline void powLanes(const float* a, const float* b, float* r, int count) {
     F p = any ? powFinite<W>(x, y) : F{};
     if (all != ~uint64_t(0)) {
       p = general ? p : ((x < 1.0f) == (y < 0.0f) ? F{} + INFINITY : F{});
-      p = (x != x) | (y != y) ? x + y : p;
-      p = (y == 0.0f) | (x == 1.0f) ? F{} + 1.0f : p;
+      p = ((x != x) | (y != y)) ? x + y : p;
+      p = ((y == 0.0f) | (x == 1.0f)) ? F{} + 1.0f : p;
     }
     std::memcpy(r + l, &p, sizeof p);
   }
