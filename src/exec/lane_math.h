@@ -36,7 +36,8 @@ void exp2Lanes(const float* a, const float* b, const float* c, float* r, uint32_
 void log2Lanes(const float* a, const float* b, const float* c, float* r, uint32_t mask);
 // D3D pow, |a|^b (pow(0, 0) = 1), of the 16 lanes: exp2(b · log2|a|) evaluated in
 // double precision and rounded once to float, so nearly always the correctly rounded
-// power (pow_lanes.h). The interpreter calls this too, so native code and interpreter
+// power (pow_lanes.h); where every lane's exponent is the same 2, 3 or 4, products in
+// double precision. The interpreter calls this too, so native code and interpreter
 // share one definition. C's special cases: pow(x, ±0) = 1 and pow(1, y) = 1 even for
 // NaN, pow(+0, y < 0) = +inf, |a|^±inf by whether |a| is above or below 1; other NaNs
 // propagate.

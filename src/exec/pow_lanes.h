@@ -6,7 +6,8 @@
 // |x|^y = 2^(y · log2|x|), evaluated in double precision and rounded once to float:
 // the evaluation's relative error is about 2^-46, so the result is the correctly
 // rounded power except where the exact one lies that close to a midpoint between two
-// floats. Only the basic operations and fused multiply-adds are used (no libm), with
+// floats. Only the basic operations and fused multiply-adds are used (no libm but
+// std::fma in a build without FMA), with
 // AVX2's lack of 64-bit integer ⇄ double conversions worked around by magic numbers.
 #pragma once
 #include <cmath>
